@@ -1,0 +1,13 @@
+// calder: forces in 2D, after chapter 2 of The Nature of Code.
+// One include for everything public.
+#pragma once
+
+#include "calder/diagnostics.hpp"
+#include "calder/error.hpp"
+#include "calder/fields.hpp"
+#include "calder/fixed_step.hpp"
+#include "calder/forces.hpp"
+#include "calder/random.hpp"
+#include "calder/trajectory.hpp"
+#include "calder/vec2.hpp"
+#include "calder/world.hpp"

@@ -1,0 +1,30 @@
+// calder: errors.
+//
+// Every rejected argument (mass <= 0, dt <= 0, NaN or infinite input, ...)
+// throws calder::Error with a one-line message naming the function, the
+// argument and the offending value. Nothing is ever turned into NaN silently.
+#pragma once
+
+#include <stdexcept>
+#include <string>
+
+namespace calder {
+
+class Error : public std::invalid_argument {
+ public:
+  using std::invalid_argument::invalid_argument;
+};
+
+namespace detail {
+
+// Throws Error("<where>: <what> must be finite (got <value>)") unless value is finite.
+void require_finite(double value, const char* where, const char* what);
+// Throws unless value is finite and > 0.
+void require_positive(double value, const char* where, const char* what);
+// Throws unless value is finite and >= 0.
+void require_non_negative(double value, const char* where, const char* what);
+// Formats a double the way the messages show it (shortest round-trip form).
+std::string format_number(double value);
+
+}  // namespace detail
+}  // namespace calder

@@ -1,0 +1,241 @@
+// calder: the world, its bodies, and the book-style Mover handle.
+//
+// A World keeps its bodies in contiguous arrays (one array per quantity), so
+// that whole-world steps run over plain memory; bodies are named by BodyId
+// handles, as in Box2D. Book-style code works through Mover, a small handle
+// with the book's vocabulary:
+//
+//   calder::World world;
+//   calder::Mover mover = world.add_mover({.position = {320, 30}, .mass = 1});
+//   mover.apply_force({0, 0.1});   // acceleration += force / mass
+//   mover.update();                // velocity += acceleration; position += velocity
+//
+// or a world steps all bodies under its fields with one call, world.step().
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <deque>
+#include <optional>
+#include <vector>
+
+#include "calder/fields.hpp"
+#include "calder/random.hpp"
+#include "calder/vec2.hpp"
+
+namespace calder {
+
+enum class Integrator {
+  semi_implicit_euler,  // the book's update: v += a dt; x += v dt (first order, symplectic)
+  velocity_verlet,      // kick-drift-kick, second order, symplectic for position forces
+  rk4,                  // classic fourth-order Runge-Kutta
+};
+
+// When bodies are moved relative to the forces acting on them.
+enum class UpdateOrder {
+  simultaneous,  // all forces from one state, then all bodies move (default)
+  sequential,    // body by body: forces on i, move i, then i + 1 (example 2.9)
+};
+
+enum class BoundaryKind { none, bounce, wrap };
+
+// Whether the boundary rule runs after the update (examples 2.1-2.3, 2.5) or
+// before it (example 2.4: forces, then bounce, then update).
+enum class BoundaryTiming { after_update, before_update };
+
+struct Edges {
+  bool left = true;
+  bool right = true;
+  bool top = true;
+  bool bottom = true;
+};
+
+// What happens at the canvas edges.
+struct Boundary {
+  BoundaryKind kind = BoundaryKind::none;
+  // Bounce: the velocity component is multiplied by -restitution (book: 1 or 0.9).
+  double restitution = 1.0;
+  // Bounce when the circle's edge touches the wall, not its centre (exercise 2.4);
+  // wrap once the whole circle has left.
+  bool use_radius = false;
+  Edges edges{};
+  BoundaryTiming timing = BoundaryTiming::after_update;
+
+  static Boundary none() { return {}; }
+  static Boundary bounce(double restitution = 1.0, bool use_radius = false, Edges edges = {}) {
+    return {BoundaryKind::bounce, restitution, use_radius, edges, BoundaryTiming::after_update};
+  }
+  static Boundary wrap(bool use_radius = false) {
+    return {BoundaryKind::wrap, 1.0, use_radius, {}, BoundaryTiming::after_update};
+  }
+  void validate(const char* where) const;
+};
+
+struct WorldDef {
+  double width = 640.0;
+  double height = 240.0;
+  double dt = 1.0;  // one frame, as in the book
+  Integrator integrator = Integrator::semi_implicit_euler;
+  UpdateOrder update_order = UpdateOrder::simultaneous;
+  Boundary boundary{};
+  std::uint32_t seed = 0;  // seeds the world's random() and noise()
+};
+
+struct BodyDef {
+  Vec2 position{};
+  Vec2 velocity{};
+  double mass = 1.0;    // > 0
+  double radius = 0.0;  // >= 0; 0: a point
+  // Own friction coefficient (exercise 2.6); unset: the Friction field's mu.
+  std::optional<double> friction = std::nullopt;
+  double drag_area = 1.0;          // frontal area scaling drag (exercise 2.9)
+};
+
+struct BodyId {
+  std::uint32_t index = UINT32_MAX;
+  friend bool operator==(BodyId a, BodyId b) { return a.index == b.index; }
+};
+
+class Mover;
+
+class World {
+ public:
+  explicit World(const WorldDef& def = {});
+
+  // --- bodies ---
+  BodyId add_body(const BodyDef& def);
+  Mover add_mover(const BodyDef& def);
+  Mover mover(BodyId id);
+  [[nodiscard]] std::size_t body_count() const { return x_.size(); }
+  [[nodiscard]] BodyId body(std::size_t index) const;  // the id of the index-th body
+  void clear_bodies();
+
+  [[nodiscard]] Vec2 position(BodyId id) const;
+  [[nodiscard]] Vec2 velocity(BodyId id) const;
+  // The acceleration accumulated since the last update of this body.
+  [[nodiscard]] Vec2 acceleration(BodyId id) const;
+  [[nodiscard]] double mass(BodyId id) const;
+  [[nodiscard]] double radius(BodyId id) const;
+  [[nodiscard]] std::optional<double> friction(BodyId id) const;
+  [[nodiscard]] double drag_area(BodyId id) const;
+  void set_position(BodyId id, Vec2 position);
+  void set_velocity(BodyId id, Vec2 velocity);
+  void set_mass(BodyId id, double mass);
+  void set_radius(BodyId id, double radius);
+  void set_friction(BodyId id, std::optional<double> mu);
+  void set_drag_area(BodyId id, double area);
+
+  // Newton's second law, one force at a time: acceleration += force / mass.
+  // The caller's force is taken by value and never changed.
+  void apply_force(BodyId id, Vec2 force);
+  // The book's update() for one body: semi-implicit Euler with the world's
+  // dt, then the accumulated acceleration is cleared.
+  void update(BodyId id);
+  // Applies a boundary rule (the world's, or another) to one body now.
+  void apply_boundary(BodyId id);
+  void apply_boundary(BodyId id, const Boundary& boundary);
+  // Whether the body touches a canvas edge: within `tolerance` of it,
+  // counting its radius (book 2.4: contactEdge is y > height - radius - 1).
+  [[nodiscard]] bool touching(BodyId id, Edge edge, double tolerance = 1.0) const;
+
+  // --- fields ---
+  // Stores a field and returns a reference that stays valid until clear_fields().
+  template <class F>
+  F& add(F field) {
+    validate(Field{field});
+    return std::get<F>(fields_.emplace_back(std::move(field)));
+  }
+  [[nodiscard]] const std::deque<Field>& fields() const { return fields_; }
+  void clear_fields() { fields_.clear(); }
+
+  // --- stepping ---
+  // Advances every body by dt: the accumulated forces plus the fields, the
+  // integrator, the boundary rule. Throws calder::Error before changing
+  // anything if a field's parameters are invalid, and after the step, naming
+  // the first such body, if a position or velocity became NaN or infinite (a
+  // custom force returning NaN, an overflow): never a silent NaN.
+  void step();
+  void step(int count);
+
+  [[nodiscard]] double time() const { return time_; }
+  [[nodiscard]] std::int64_t step_count() const { return step_count_; }
+  [[nodiscard]] double dt() const { return def_.dt; }
+  void set_dt(double dt);
+  [[nodiscard]] Integrator integrator() const { return def_.integrator; }
+  void set_integrator(Integrator integrator) { def_.integrator = integrator; }
+  [[nodiscard]] UpdateOrder update_order() const { return def_.update_order; }
+  void set_update_order(UpdateOrder order) { def_.update_order = order; }
+  [[nodiscard]] const Boundary& boundary() const { return def_.boundary; }
+  void set_boundary(const Boundary& boundary);
+  [[nodiscard]] double width() const { return def_.width; }
+  [[nodiscard]] double height() const { return def_.height; }
+
+  // The world's p5-compatible generators, seeded with WorldDef::seed.
+  Random& random() { return random_; }
+  Noise& noise() { return noise_; }
+  [[nodiscard]] const Noise& noise() const { return noise_; }
+
+  // Read-only view of all bodies (contiguous arrays), e.g. for diagnostics.
+  [[nodiscard]] BodyView bodies() const;
+
+ private:
+  std::size_t checked(BodyId id, const char* where) const;
+  FieldContext context(const BodyView& view, double time) const;
+  void accumulate_fields(const FieldContext& context, std::size_t first, std::size_t last,
+                         std::span<double> ax, std::span<double> ay) const;
+  void boundary_one(std::size_t i, const Boundary& boundary);
+  void step_euler_simultaneous();
+  void step_euler_sequential();
+  void step_multistage();
+  void check_finite(const char* where) const;
+
+  WorldDef def_;
+  // Structure of arrays: body i is index i of each.
+  std::vector<double> x_, y_, vx_, vy_, ax_, ay_, mass_, radius_, friction_, drag_area_;
+  std::deque<Field> fields_;
+  Random random_;
+  Noise noise_;
+  double time_ = 0.0;
+  std::int64_t step_count_ = 0;
+  // Scratch space of the multi-stage integrators, kept to avoid reallocation.
+  std::vector<double> scratch_;
+};
+
+// A handle to one body with the book's vocabulary. Cheap to copy; valid as
+// long as its world is.
+class Mover {
+ public:
+  Mover(World& world, BodyId id) : world_(&world), id_(id) {}
+
+  void apply_force(Vec2 force) { world_->apply_force(id_, force); }
+  void update() { world_->update(id_); }
+  // The world's boundary rule now (book: checkEdges / bounceEdges).
+  void check_edges() { world_->apply_boundary(id_); }
+  void check_edges(const Boundary& boundary) { world_->apply_boundary(id_, boundary); }
+  // Touching the bottom edge within tolerance (book: contactEdge).
+  [[nodiscard]] bool contact_edge(double tolerance = 1.0) const {
+    return world_->touching(id_, Edge::bottom, tolerance);
+  }
+
+  [[nodiscard]] Vec2 position() const { return world_->position(id_); }
+  [[nodiscard]] Vec2 velocity() const { return world_->velocity(id_); }
+  [[nodiscard]] Vec2 acceleration() const { return world_->acceleration(id_); }
+  [[nodiscard]] double mass() const { return world_->mass(id_); }
+  [[nodiscard]] double radius() const { return world_->radius(id_); }
+  void set_position(Vec2 position) { world_->set_position(id_, position); }
+  void set_velocity(Vec2 velocity) { world_->set_velocity(id_, velocity); }
+
+  // The force this body exerts on another under a law (book: body.attract(other)).
+  [[nodiscard]] Vec2 attract(const Mover& other, const AttractionLaw& law = {}) const {
+    return attraction(position(), mass(), other.position(), other.mass(), law);
+  }
+
+  [[nodiscard]] BodyId id() const { return id_; }
+  [[nodiscard]] World& world() const { return *world_; }
+
+ private:
+  World* world_;
+  BodyId id_;
+};
+
+}  // namespace calder

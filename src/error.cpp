@@ -1,0 +1,77 @@
+// calder: errors (see calder/error.hpp).
+#include "calder/error.hpp"
+
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <string>
+
+#if __has_include(<version>)
+#include <version>
+#endif
+#if defined(__cpp_lib_to_chars) && __cpp_lib_to_chars >= 201611L
+#include <charconv>
+#include <system_error>
+#define CALDER_HAVE_FLOAT_TO_CHARS 1
+#endif
+
+namespace calder::detail {
+
+namespace {
+
+[[noreturn]] void fail(const char* where, const char* what, const char* condition, double value) {
+  std::string message;
+  message += where;
+  message += ": ";
+  message += what;
+  message += " must be ";
+  message += condition;
+  message += " (got ";
+  message += format_number(value);
+  message += ")";
+  throw Error(message);
+}
+
+}  // namespace
+
+void require_finite(double value, const char* where, const char* what) {
+  if (!std::isfinite(value)) fail(where, what, "finite", value);
+}
+
+void require_positive(double value, const char* where, const char* what) {
+  require_finite(value, where, what);
+  if (!(value > 0.0)) fail(where, what, "> 0", value);
+}
+
+void require_non_negative(double value, const char* where, const char* what) {
+  require_finite(value, where, what);
+  if (!(value >= 0.0)) fail(where, what, ">= 0", value);
+}
+
+std::string format_number(double value) {
+  if (std::isnan(value)) return "nan";
+  if (std::isinf(value)) return value > 0.0 ? "inf" : "-inf";
+#ifdef CALDER_HAVE_FLOAT_TO_CHARS
+  // Shortest form that reads back to the same double.
+  std::array<char, 64> buffer{};
+  const std::to_chars_result result =
+      std::to_chars(buffer.data(), buffer.data() + buffer.size(), value);
+  if (result.ec == std::errc{}) return {buffer.data(), result.ptr};
+#endif
+  // Fallback for standard libraries without floating-point std::to_chars
+  // (libc++ before 14, e.g. Emscripten's libc++ 13): integers of moderate size
+  // in fixed notation, otherwise the shortest %g precision that round-trips.
+  std::array<char, 64> text{};
+  if (value == std::trunc(value) && std::fabs(value) < 1e15) {
+    std::snprintf(text.data(), text.size(), "%.0f", value);
+    return text.data();
+  }
+  for (int precision = 1; precision <= 17; ++precision) {
+    std::snprintf(text.data(), text.size(), "%.*g", precision, value);
+    if (std::strtod(text.data(), nullptr) == value) break;
+  }
+  return text.data();
+}
+
+}  // namespace calder::detail

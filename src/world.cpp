@@ -1,0 +1,287 @@
+#include "calder/world.hpp"
+
+#include <cmath>
+#include <limits>
+#include <string>
+
+#include "calder/error.hpp"
+#include "integrate.hpp"
+
+namespace calder {
+
+namespace {
+
+constexpr double kNoFriction = std::numeric_limits<double>::quiet_NaN();
+
+void require_finite_vec(Vec2 v, const char* where, const char* what) {
+  detail::require_finite(v.x, where, what);
+  detail::require_finite(v.y, where, what);
+}
+
+void validate_body(const BodyDef& def, const char* where) {
+  require_finite_vec(def.position, where, "position");
+  require_finite_vec(def.velocity, where, "velocity");
+  detail::require_positive(def.mass, where, "mass");
+  detail::require_non_negative(def.radius, where, "radius");
+  if (def.friction) detail::require_non_negative(*def.friction, where, "friction");
+  detail::require_non_negative(def.drag_area, where, "drag_area");
+}
+
+// Moves a coordinate that left [lo, hi] back in from the other side.
+double wrap_coordinate(double v, double lo, double hi) {
+  const double span = hi - lo;
+  if (span <= 0.0) return v;
+  if (v > hi) {
+    v -= span;
+    if (v > hi) v = lo + std::fmod(v - lo, span);
+  } else if (v < lo) {
+    v += span;
+    if (v < lo) v = hi - std::fmod(hi - v, span);
+  }
+  return v;
+}
+
+}  // namespace
+
+void Boundary::validate(const char* where) const {
+  const std::string w = std::string(where) + ": boundary";
+  detail::require_non_negative(restitution, w.c_str(), "restitution");
+}
+
+World::World(const WorldDef& def) : def_(def), random_(def.seed), noise_(def.seed) {
+  detail::require_positive(def.width, "World", "width");
+  detail::require_positive(def.height, "World", "height");
+  detail::require_positive(def.dt, "World", "dt");
+  def.boundary.validate("World");
+}
+
+std::size_t World::checked(BodyId id, const char* where) const {
+  if (id.index >= x_.size()) {
+    throw Error(std::string(where) + ": no body with id " + std::to_string(id.index) +
+                " (the world has " + std::to_string(x_.size()) + " bodies)");
+  }
+  return id.index;
+}
+
+BodyId World::add_body(const BodyDef& def) {
+  validate_body(def, "World::add_body");
+  if (x_.size() >= UINT32_MAX) throw Error("World::add_body: too many bodies");
+  const BodyId id{static_cast<std::uint32_t>(x_.size())};
+  x_.push_back(def.position.x);
+  y_.push_back(def.position.y);
+  vx_.push_back(def.velocity.x);
+  vy_.push_back(def.velocity.y);
+  ax_.push_back(0.0);
+  ay_.push_back(0.0);
+  mass_.push_back(def.mass);
+  radius_.push_back(def.radius);
+  friction_.push_back(def.friction ? *def.friction : kNoFriction);
+  drag_area_.push_back(def.drag_area);
+  return id;
+}
+
+Mover World::add_mover(const BodyDef& def) { return {*this, add_body(def)}; }
+
+Mover World::mover(BodyId id) {
+  checked(id, "World::mover");
+  return {*this, id};
+}
+
+BodyId World::body(std::size_t index) const {
+  if (index >= x_.size()) {
+    throw Error("World::body: index " + std::to_string(index) + " out of range (the world has " +
+                std::to_string(x_.size()) + " bodies)");
+  }
+  return BodyId{static_cast<std::uint32_t>(index)};
+}
+
+void World::clear_bodies() {
+  for (auto* v : {&x_, &y_, &vx_, &vy_, &ax_, &ay_, &mass_, &radius_, &friction_, &drag_area_}) {
+    v->clear();
+  }
+}
+
+Vec2 World::position(BodyId id) const {
+  const std::size_t i = checked(id, "World::position");
+  return {x_[i], y_[i]};
+}
+Vec2 World::velocity(BodyId id) const {
+  const std::size_t i = checked(id, "World::velocity");
+  return {vx_[i], vy_[i]};
+}
+Vec2 World::acceleration(BodyId id) const {
+  const std::size_t i = checked(id, "World::acceleration");
+  return {ax_[i], ay_[i]};
+}
+double World::mass(BodyId id) const { return mass_[checked(id, "World::mass")]; }
+double World::radius(BodyId id) const { return radius_[checked(id, "World::radius")]; }
+std::optional<double> World::friction(BodyId id) const {
+  const double f = friction_[checked(id, "World::friction")];
+  return std::isnan(f) ? std::nullopt : std::optional<double>(f);
+}
+double World::drag_area(BodyId id) const { return drag_area_[checked(id, "World::drag_area")]; }
+
+void World::set_position(BodyId id, Vec2 position) {
+  const std::size_t i = checked(id, "World::set_position");
+  require_finite_vec(position, "World::set_position", "position");
+  x_[i] = position.x;
+  y_[i] = position.y;
+}
+void World::set_velocity(BodyId id, Vec2 velocity) {
+  const std::size_t i = checked(id, "World::set_velocity");
+  require_finite_vec(velocity, "World::set_velocity", "velocity");
+  vx_[i] = velocity.x;
+  vy_[i] = velocity.y;
+}
+void World::set_mass(BodyId id, double mass) {
+  const std::size_t i = checked(id, "World::set_mass");
+  detail::require_positive(mass, "World::set_mass", "mass");
+  mass_[i] = mass;
+}
+void World::set_radius(BodyId id, double radius) {
+  const std::size_t i = checked(id, "World::set_radius");
+  detail::require_non_negative(radius, "World::set_radius", "radius");
+  radius_[i] = radius;
+}
+void World::set_friction(BodyId id, std::optional<double> mu) {
+  const std::size_t i = checked(id, "World::set_friction");
+  if (mu) detail::require_non_negative(*mu, "World::set_friction", "friction");
+  friction_[i] = mu ? *mu : kNoFriction;
+}
+void World::set_drag_area(BodyId id, double area) {
+  const std::size_t i = checked(id, "World::set_drag_area");
+  detail::require_non_negative(area, "World::set_drag_area", "drag_area");
+  drag_area_[i] = area;
+}
+
+void World::apply_force(BodyId id, Vec2 force) {
+  const std::size_t i = checked(id, "World::apply_force");
+  require_finite_vec(force, "World::apply_force", "force");
+  // p5: acceleration.add(p5.Vector.div(force, mass)), one force at a time.
+  ax_[i] += force.x / mass_[i];
+  ay_[i] += force.y / mass_[i];
+}
+
+void World::update(BodyId id) {
+  const std::size_t i = checked(id, "World::update");
+  detail::kick_drift(x_[i], y_[i], vx_[i], vy_[i], ax_[i], ay_[i], def_.dt);
+  if (!std::isfinite(x_[i]) || !std::isfinite(y_[i]) || !std::isfinite(vx_[i]) ||
+      !std::isfinite(vy_[i])) {
+    throw Error("World::update: body " + std::to_string(i) +
+                " has a non-finite position or velocity after the update");
+  }
+}
+
+void World::apply_boundary(BodyId id) { apply_boundary(id, def_.boundary); }
+
+void World::apply_boundary(BodyId id, const Boundary& boundary) {
+  const std::size_t i = checked(id, "World::apply_boundary");
+  boundary.validate("World::apply_boundary");
+  boundary_one(i, boundary);
+}
+
+void World::boundary_one(std::size_t i, const Boundary& b) {
+  const double r = b.use_radius ? radius_[i] : 0.0;
+  const double w = def_.width;
+  const double h = def_.height;
+  switch (b.kind) {
+    case BoundaryKind::none:
+      return;
+    case BoundaryKind::bounce: {
+      // The book's order: right before left, bottom before top; clamp, then reverse.
+      const double reverse = -b.restitution;
+      if (b.edges.right && x_[i] > w - r) {
+        x_[i] = w - r;
+        vx_[i] *= reverse;
+      } else if (b.edges.left && x_[i] < r) {
+        x_[i] = r;
+        vx_[i] *= reverse;
+      }
+      if (b.edges.bottom && y_[i] > h - r) {
+        y_[i] = h - r;
+        vy_[i] *= reverse;
+      } else if (b.edges.top && y_[i] < r) {
+        y_[i] = r;
+        vy_[i] *= reverse;
+      }
+      return;
+    }
+    case BoundaryKind::wrap:
+      if (b.edges.left || b.edges.right) x_[i] = wrap_coordinate(x_[i], -r, w + r);
+      if (b.edges.top || b.edges.bottom) y_[i] = wrap_coordinate(y_[i], -r, h + r);
+      return;
+  }
+}
+
+bool World::touching(BodyId id, Edge edge, double tolerance) const {
+  const std::size_t i = checked(id, "World::touching");
+  detail::require_finite(tolerance, "World::touching", "tolerance");
+  return touches_edge(edge, {x_[i], y_[i]}, radius_[i], def_.width, def_.height, tolerance);
+}
+
+void World::set_dt(double dt) {
+  detail::require_positive(dt, "World::set_dt", "dt");
+  def_.dt = dt;
+}
+
+void World::set_boundary(const Boundary& boundary) {
+  boundary.validate("World::set_boundary");
+  def_.boundary = boundary;
+}
+
+BodyView World::bodies() const { return {x_, y_, vx_, vy_, mass_, radius_, friction_, drag_area_}; }
+
+FieldContext World::context(const BodyView& view, double time) const {
+  FieldContext c;
+  c.bodies = view;
+  c.time = time;
+  c.dt = def_.dt;
+  c.width = def_.width;
+  c.height = def_.height;
+  c.noise = &noise_;
+  return c;
+}
+
+void World::accumulate_fields(const FieldContext& context, std::size_t first, std::size_t last,
+                              std::span<double> ax, std::span<double> ay) const {
+  for (const Field& field : fields_) accumulate(field, context, first, last, ax, ay);
+}
+
+void World::check_finite(const char* where) const {
+  for (std::size_t i = 0; i < x_.size(); ++i) {
+    if (!std::isfinite(x_[i]) || !std::isfinite(y_[i]) || !std::isfinite(vx_[i]) ||
+        !std::isfinite(vy_[i])) {
+      throw Error(std::string(where) + ": body " + std::to_string(i) +
+                  " has a non-finite position or velocity after step " +
+                  std::to_string(step_count_ + 1) + " (x " + detail::format_number(x_[i]) + ", y " +
+                  detail::format_number(y_[i]) + ", vx " + detail::format_number(vx_[i]) + ", vy " +
+                  detail::format_number(vy_[i]) + ")");
+    }
+  }
+}
+
+void World::step() {
+  for (const Field& field : fields_) validate(field);
+  if (def_.update_order == UpdateOrder::sequential &&
+      def_.integrator != Integrator::semi_implicit_euler) {
+    throw Error(
+        "World::step: the sequential update order needs the semi_implicit_euler integrator");
+  }
+  if (def_.update_order == UpdateOrder::sequential) {
+    step_euler_sequential();
+  } else if (def_.integrator == Integrator::semi_implicit_euler) {
+    step_euler_simultaneous();
+  } else {
+    step_multistage();
+  }
+  check_finite("World::step");
+  time_ += def_.dt;
+  ++step_count_;
+}
+
+void World::step(int count) {
+  if (count < 0) throw Error("World::step: count must be >= 0 (got " + std::to_string(count) + ")");
+  for (int k = 0; k < count; ++k) step();
+}
+
+}  // namespace calder
