@@ -200,8 +200,9 @@ void accumulate(const Field& field, const FieldContext& c, std::size_t first, st
                                 f.tolerance)) {
                 continue;
               }
-              add_force(ax, ay, i, friction(b.velocity(i), b.friction_or(i, f.mu), f.normal),
-                        b.mass[i]);
+              Vec2 force = friction(b.velocity(i), b.friction_or(i, f.mu), f.normal);
+              if (f.never_reverse) force = limit_drag(force, b.velocity(i), b.mass[i], c.dt);
+              add_force(ax, ay, i, force, b.mass[i]);
             }
           },
           [&](const Liquid& f) {

@@ -1,6 +1,8 @@
 #include "calder/world.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <limits>
 #include <string>
 
@@ -46,6 +48,14 @@ double wrap_coordinate(double v, double lo, double hi) {
 void Boundary::validate(const char* where) const {
   const std::string w = std::string(where) + ": boundary";
   detail::require_non_negative(restitution, w.c_str(), "restitution");
+}
+
+void World::validate_for_add(const Field& field) {
+  try {
+    validate(field);
+  } catch (const Error& e) {
+    throw Error(std::string("World::add: ") + e.what());
+  }
 }
 
 World::World(const WorldDef& def) : def_(def), random_(def.seed), noise_(def.seed) {
@@ -158,18 +168,36 @@ void World::apply_force(BodyId id, Vec2 force) {
   const std::size_t i = checked(id, "World::apply_force");
   require_finite_vec(force, "World::apply_force", "force");
   // p5: acceleration.add(p5.Vector.div(force, mass)), one force at a time.
-  ax_[i] += force.x / mass_[i];
-  ay_[i] += force.y / mass_[i];
+  const double ax = ax_[i] + force.x / mass_[i];
+  const double ay = ay_[i] + force.y / mass_[i];
+  if (!std::isfinite(ax) || !std::isfinite(ay)) {
+    throw Error("World::apply_force: force (" + detail::format_number(force.x) + ", " +
+                detail::format_number(force.y) + ") on body " + std::to_string(i) + " of mass " +
+                detail::format_number(mass_[i]) + " gives a non-finite acceleration");
+  }
+  ax_[i] = ax;
+  ay_[i] = ay;
 }
 
 void World::update(BodyId id) {
   const std::size_t i = checked(id, "World::update");
-  detail::kick_drift(x_[i], y_[i], vx_[i], vy_[i], ax_[i], ay_[i], def_.dt);
-  if (!std::isfinite(x_[i]) || !std::isfinite(y_[i]) || !std::isfinite(vx_[i]) ||
-      !std::isfinite(vy_[i])) {
+  double x = x_[i];
+  double y = y_[i];
+  double vx = vx_[i];
+  double vy = vy_[i];
+  double ax = ax_[i];
+  double ay = ay_[i];
+  detail::kick_drift(x, y, vx, vy, ax, ay, def_.dt);
+  if (!std::isfinite(x) || !std::isfinite(y) || !std::isfinite(vx) || !std::isfinite(vy)) {
     throw Error("World::update: body " + std::to_string(i) +
-                " has a non-finite position or velocity after the update");
+                " would get a non-finite position or velocity (overflow); left unchanged");
   }
+  x_[i] = x;
+  y_[i] = y;
+  vx_[i] = vx;
+  vy_[i] = vy;
+  ax_[i] = ax;
+  ay_[i] = ay;
 }
 
 void World::apply_boundary(BodyId id) { apply_boundary(id, def_.boundary); }
@@ -261,22 +289,52 @@ void World::check_finite(const char* where) const {
 }
 
 void World::step() {
-  for (const Field& field : fields_) validate(field);
+  for (const Field& field : fields_) {
+    try {
+      validate(field);
+    } catch (const Error& e) {
+      throw Error(std::string("World::step: ") + e.what());
+    }
+  }
   if (def_.update_order == UpdateOrder::sequential &&
       def_.integrator != Integrator::semi_implicit_euler) {
     throw Error(
         "World::step: the sequential update order needs the semi_implicit_euler integrator");
   }
-  if (def_.update_order == UpdateOrder::sequential) {
-    step_euler_sequential();
-  } else if (def_.integrator == Integrator::semi_implicit_euler) {
-    step_euler_simultaneous();
-  } else {
-    step_multistage();
+  // A step either completes or throws with the world as it was: keep the
+  // state it may change (a copy of six arrays, small next to the forces).
+  save_state();
+  try {
+    if (def_.update_order == UpdateOrder::sequential) {
+      step_euler_sequential();
+    } else if (def_.integrator == Integrator::semi_implicit_euler) {
+      step_euler_simultaneous();
+    } else {
+      step_multistage();
+    }
+    check_finite("World::step");
+  } catch (...) {
+    restore_state();
+    throw;
   }
-  check_finite("World::step");
   time_ += def_.dt;
   ++step_count_;
+}
+
+void World::save_state() {
+  const std::size_t n = x_.size();
+  saved_.resize(6 * n);
+  auto out = saved_.begin();
+  for (const auto* v : {&x_, &y_, &vx_, &vy_, &ax_, &ay_})
+    out = std::copy(v->begin(), v->end(), out);
+}
+
+void World::restore_state() {
+  auto in = saved_.cbegin();
+  for (auto* v : {&x_, &y_, &vx_, &vy_, &ax_, &ay_}) {
+    std::copy(in, in + static_cast<std::ptrdiff_t>(v->size()), v->begin());
+    in += static_cast<std::ptrdiff_t>(v->size());
+  }
 }
 
 void World::step(int count) {

@@ -117,6 +117,10 @@ struct Friction {
   double normal = 1.0;
   Edge surface = Edge::bottom;
   double tolerance = 1.0;
+  // The book's friction can't hold a body still: near rest one step's
+  // friction overshoots and the body creeps back and forth. true limits it
+  // (as limit_drag does) so that it stops the body instead of reversing it.
+  bool never_reverse = false;
   bool enabled = true;
 };
 
@@ -179,8 +183,8 @@ struct CustomForce {
   bool enabled = true;
 };
 
-using Field = std::variant<Gravity, Wind, NoiseWind, Helium, Fan, EdgeForce, Friction, Liquid,
-                           Drag, Lift, Attractor, MutualAttraction, CustomForce>;
+using Field = std::variant<Gravity, Wind, NoiseWind, Helium, Fan, EdgeForce, Friction, Liquid, Drag,
+                           Lift, Attractor, MutualAttraction, CustomForce>;
 
 // Throws calder::Error naming the field and parameter when a field's
 // parameters are out of range (negative drag, zero reach, NaN, ...).

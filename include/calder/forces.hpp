@@ -57,7 +57,7 @@ Vec2 friction(Vec2 velocity, double mu, double normal = 1.0);
 // (exercise 2.9) and is 1 by default.
 Vec2 drag(Vec2 velocity, double c, double area = 1.0);
 
-// Limits a drag force so that, applied alone for one step of dt to a body of
+// Limits a drag (or any resistive) force so that, applied alone for one step of dt to a body of
 // this mass, it can slow the body to rest but never reverse it (exercise 2.8):
 // |F| <= mass * |v| / dt.
 Vec2 limit_drag(Vec2 drag_force, Vec2 velocity, double mass, double dt);
@@ -82,15 +82,14 @@ enum class MassProduct { left_to_right, masses_first };
 
 // A force law of distance and masses for custom attraction (exercise 2.13):
 // returns the signed magnitude, positive toward the source, negative away.
-using ForceLaw =
-    std::function<double(double distance, double source_mass, double target_mass)>;
+using ForceLaw = std::function<double(double distance, double source_mass, double target_mass)>;
 
 // Gravitational attraction, as the book models it. G < 0 repels.
 struct AttractionLaw {
   double G = 1.0;
   DistanceClamp clamp = DistanceClamp::distance;
-  double min = 5.0;   // lower bound of the clamped quantity (distance, or squared distance)
-  double max = 25.0;  // upper bound of the clamped quantity
+  double min = 5.0;        // lower bound of the clamped quantity (distance, or squared distance)
+  double max = 25.0;       // upper bound of the clamped quantity
   double softening = 0.0;  // Plummer epsilon, with DistanceClamp::none
   MassProduct product = MassProduct::left_to_right;
   ForceLaw custom;  // when set, replaces the inverse-square law (G, clamp, ... unused)
@@ -111,8 +110,8 @@ struct AttractionLaw {
 // with source_mass exerts on a target at target_position with target_mass:
 // r = source - target; |F| from the law; F = r.set_mag(|F|). Zero when the two
 // positions coincide (no direction). The force on the source is exactly -F.
-Vec2 attraction(Vec2 source_position, double source_mass, Vec2 target_position,
-                double target_mass, const AttractionLaw& law);
+Vec2 attraction(Vec2 source_position, double source_mass, Vec2 target_position, double target_mass,
+                const AttractionLaw& law);
 
 // The potential energy of a source-target pair under the law, zero at
 // infinity for the unclamped law. For the clamped laws the force is constant

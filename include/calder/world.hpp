@@ -56,7 +56,9 @@ struct Boundary {
   // Bounce: the velocity component is multiplied by -restitution (book: 1 or 0.9).
   double restitution = 1.0;
   // Bounce when the circle's edge touches the wall, not its centre (exercise 2.4);
-  // wrap once the whole circle has left.
+  // wrap once the whole circle has left. Wrapping is periodic: a body that
+  // leaves by d past one side comes back d inside the other (the book's
+  // chapter 1 puts it exactly on the edge instead; periodic keeps motion smooth).
   bool use_radius = false;
   Edges edges{};
   BoundaryTiming timing = BoundaryTiming::after_update;
@@ -88,7 +90,7 @@ struct BodyDef {
   double radius = 0.0;  // >= 0; 0: a point
   // Own friction coefficient (exercise 2.6); unset: the Friction field's mu.
   std::optional<double> friction = std::nullopt;
-  double drag_area = 1.0;          // frontal area scaling drag (exercise 2.9)
+  double drag_area = 1.0;  // frontal area scaling drag (exercise 2.9)
 };
 
 struct BodyId {
@@ -126,10 +128,12 @@ class World {
   void set_drag_area(BodyId id, double area);
 
   // Newton's second law, one force at a time: acceleration += force / mass.
-  // The caller's force is taken by value and never changed.
+  // The caller's force is taken by value and never changed. Throws (changing
+  // nothing) if the force or the resulting acceleration is not finite.
   void apply_force(BodyId id, Vec2 force);
   // The book's update() for one body: semi-implicit Euler with the world's
-  // dt, then the accumulated acceleration is cleared.
+  // dt, then the accumulated acceleration is cleared. Throws (changing
+  // nothing) if the result would not be finite.
   void update(BodyId id);
   // Applies a boundary rule (the world's, or another) to one body now.
   void apply_boundary(BodyId id);
@@ -142,7 +146,7 @@ class World {
   // Stores a field and returns a reference that stays valid until clear_fields().
   template <class F>
   F& add(F field) {
-    validate(Field{field});
+    validate_for_add(Field{field});
     return std::get<F>(fields_.emplace_back(std::move(field)));
   }
   [[nodiscard]] const std::deque<Field>& fields() const { return fields_; }
@@ -150,10 +154,11 @@ class World {
 
   // --- stepping ---
   // Advances every body by dt: the accumulated forces plus the fields, the
-  // integrator, the boundary rule. Throws calder::Error before changing
-  // anything if a field's parameters are invalid, and after the step, naming
-  // the first such body, if a position or velocity became NaN or infinite (a
-  // custom force returning NaN, an overflow): never a silent NaN.
+  // integrator, the boundary rule. Either the step completes, or it throws
+  // calder::Error and leaves the world exactly as it was: when a field's
+  // parameters are invalid, or when a position or velocity would become NaN
+  // or infinite (a custom force returning NaN, an overflow); the message
+  // names the field or the body. Never a silent NaN.
   void step();
   void step(int count);
 
@@ -180,6 +185,9 @@ class World {
 
  private:
   std::size_t checked(BodyId id, const char* where) const;
+  static void validate_for_add(const Field& field);
+  void save_state();
+  void restore_state();
   FieldContext context(const BodyView& view, double time) const;
   void accumulate_fields(const FieldContext& context, std::size_t first, std::size_t last,
                          std::span<double> ax, std::span<double> ay) const;
@@ -197,8 +205,10 @@ class World {
   Noise noise_;
   double time_ = 0.0;
   std::int64_t step_count_ = 0;
-  // Scratch space of the multi-stage integrators, kept to avoid reallocation.
+  // Scratch space of the multi-stage integrators, and the state saved at the
+  // start of a step; kept to avoid reallocation.
   std::vector<double> scratch_;
+  std::vector<double> saved_;
 };
 
 // A handle to one body with the book's vocabulary. Cheap to copy; valid as
