@@ -33,7 +33,14 @@ double potential_energy(const World& world) {
   double sum = 0.0;
   for (const Field& field : world.fields()) {
     if (const auto* mutual = std::get_if<MutualAttraction>(&field)) {
-      if (mutual->enabled) sum += potential_energy(world, mutual->law);
+      if (!mutual->enabled) continue;
+      sum += potential_energy(world, mutual->law);
+      if (mutual->central) {
+        for (std::size_t i = 0; i < b.size(); ++i) {
+          sum += attraction_potential(mutual->central->position.dist(b.position(i)),
+                                      mutual->central->mass, b.mass[i], mutual->law);
+        }
+      }
     } else if (const auto* attractor = std::get_if<Attractor>(&field)) {
       if (!attractor->enabled) continue;
       for (std::size_t i = 0; i < b.size(); ++i) {

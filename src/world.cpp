@@ -288,6 +288,19 @@ void World::check_finite(const char* where) const {
   }
 }
 
+Field& World::add_field(Field field) {
+  validate_for_add(field);
+  return fields_.emplace_back(std::move(field));
+}
+
+Field& World::field(std::size_t index) {
+  if (index >= fields_.size()) {
+    throw Error("World::field: index " + std::to_string(index) + " out of range (the world has " +
+                std::to_string(fields_.size()) + " fields)");
+  }
+  return fields_[index];
+}
+
 void World::step() {
   for (const Field& field : fields_) {
     try {

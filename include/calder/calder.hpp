@@ -8,6 +8,7 @@
 #include "calder/fixed_step.hpp"
 #include "calder/forces.hpp"
 #include "calder/random.hpp"
+#include "calder/scene.hpp"
 #include "calder/trajectory.hpp"
 #include "calder/vec2.hpp"
 #include "calder/world.hpp"

@@ -14,6 +14,7 @@
 
 #include <cstddef>
 #include <functional>
+#include <optional>
 #include <span>
 #include <variant>
 
@@ -165,13 +166,32 @@ struct Attractor {
   }
 };
 
+// The order in which mutual attraction adds up its forces (it decides the
+// last bits, and so whether a sketch is reproduced exactly).
+enum class PairOrder {
+  // Each pair once, +F on one body and exactly -F on the other: Newton's
+  // third law holds exactly and momentum is conserved (the default).
+  pairwise,
+  // For each body i in order: the central body (if any) pulls i, then i pulls
+  // every other body (exercise 2.16's galaxy).
+  by_source,
+};
+
+// A fixed heavy body that is not a mover (the galaxy's sun): it pulls every
+// body under the same law and is never moved.
+struct CentralBody {
+  Vec2 position{};
+  double mass = 500.0;
+};
+
 // Every body attracts every other (the n-body problem). In a world updated
-// simultaneously each pair's force is computed once and applied as +F and -F:
-// Newton's third law holds exactly and momentum is conserved. In a world
+// simultaneously all forces come from one state (see PairOrder). In a world
 // updated sequentially (example 2.9), body i feels all others at their current
 // positions, including the ones already moved this step.
 struct MutualAttraction {
   AttractionLaw law{};
+  PairOrder order = PairOrder::pairwise;
+  std::optional<CentralBody> central = std::nullopt;
   bool enabled = true;
 };
 

@@ -149,7 +149,11 @@ class World {
     validate_for_add(Field{field});
     return std::get<F>(fields_.emplace_back(std::move(field)));
   }
+  // Stores a field given as the variant (scenes build these from data).
+  Field& add_field(Field field);
   [[nodiscard]] const std::deque<Field>& fields() const { return fields_; }
+  // The index-th field, in the order added; throws calder::Error if out of range.
+  [[nodiscard]] Field& field(std::size_t index);
   void clear_fields() { fields_.clear(); }
 
   // --- stepping ---

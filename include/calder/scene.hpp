@@ -1,0 +1,198 @@
+// calder: scenes, worlds described as data, and the simulation that runs them.
+//
+// A Scene says everything needed to start and drive a world: the canvas, the
+// integrator, the bodies (explicit, or generated with the p5-compatible
+// generator in the book's order of draws), the fields, the boundary, and how
+// the scene reacts to the mouse (wind while pressed, a fan at the mouse, a
+// draggable attractor, a reset on click). Built-in scenes (every example of
+// chapter 2) and scene files (calder/scene_file.hpp) both produce Scenes; the
+// `calder` command, the window and the tests all run them through Simulation.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "calder/fields.hpp"
+#include "calder/random.hpp"
+#include "calder/vec2.hpp"
+#include "calder/world.hpp"
+
+namespace calder {
+
+// A per-body value: fixed, drawn uniformly in [min, max) with p5's
+// random(min, max), or start + step * index (e.g. 40 + i * 70).
+struct Draw {
+  enum class Kind { fixed, uniform, linear };
+  Kind kind = Kind::fixed;
+  double value = 0.0;  // fixed: the value; linear: the start
+  double min = 0.0;    // uniform
+  double max = 0.0;    // uniform
+  double step = 0.0;   // linear
+
+  static Draw fixed(double value) { return {Kind::fixed, value, 0.0, 0.0, 0.0}; }
+  static Draw uniform(double min, double max) { return {Kind::uniform, 0.0, min, max, 0.0}; }
+  static Draw linear(double start, double step) { return {Kind::linear, start, 0.0, 0.0, step}; }
+  // The value for the index-th body; draws from rng only when uniform.
+  double sample(Random& rng, std::size_t index) const;
+};
+
+// How a body's radius follows from its mass: k, k * mass (book: mass * 8),
+// or k * sqrt(mass) (exercise 2.11, the galaxy).
+struct RadiusRule {
+  enum class Kind { fixed, per_mass, per_sqrt_mass };
+  Kind kind = Kind::fixed;
+  double k = 0.0;
+  double radius_for(double mass) const;
+};
+
+// A group of bodies generated in order.
+//
+// Layout::grid draws, per body and in this order, x, y, mass, vx, vy (only
+// the non-fixed ones draw), the order of `new Mover(random(width),
+// random(height), random(0.5, 3))`.
+//
+// Layout::orbit places bodies around `center` like exercise 2.16: per body a
+// direction random2d(), a speed, a distance and a mass, in that order; the
+// position is center + direction * distance and the velocity is the
+// direction turned by +90 degrees (clockwise on a y-down canvas) times speed.
+struct BodyGroup {
+  enum class Layout { grid, orbit };
+  Layout layout = Layout::grid;
+  std::size_t count = 1;
+  Draw x = Draw::fixed(0.0);
+  Draw y = Draw::fixed(0.0);
+  Draw mass = Draw::fixed(1.0);
+  Draw vx = Draw::fixed(0.0);
+  Draw vy = Draw::fixed(0.0);
+  // Layout::orbit only.
+  Vec2 center{};
+  Draw distance = Draw::fixed(100.0);
+  Draw speed = Draw::fixed(1.0);
+  RadiusRule radius{};
+  std::optional<double> friction = std::nullopt;
+  double drag_area = 1.0;
+};
+
+// How a field follows the mouse.
+struct FieldBinding {
+  bool while_pressed = false;  // enabled only while the mouse is pressed (the book's wind)
+  bool follow_mouse = false;   // a Fan or Attractor placed at the mouse every frame
+  bool draggable = false;      // an Attractor grabbed within `mass` pixels and dragged (2.6)
+};
+
+struct SceneField {
+  Field field;
+  FieldBinding binding{};
+};
+
+// Frames (draw() numbers, 1-based, inclusive) during which the mouse is held.
+struct FrameRange {
+  std::int64_t first = 0;
+  std::int64_t last = 0;
+};
+
+// Where the mouse is from a frame on (a scripted path).
+struct MouseMove {
+  std::int64_t frame = 0;
+  Vec2 position{};
+};
+
+// Scripted input for headless runs; the window supplies live input instead.
+struct InputScript {
+  std::vector<FrameRange> mouse_pressed;
+  Vec2 mouse{};                  // the mouse position before any move
+  std::vector<MouseMove> moves;  // sorted by frame
+  // Whether the mouse is held during draw() number `frame`, and where it is.
+  [[nodiscard]] bool pressed_at(std::int64_t frame) const;
+  [[nodiscard]] Vec2 mouse_at(std::int64_t frame) const;
+};
+
+enum class PressAction { none, reset };
+
+// Limits that keep a typo from asking for the impossible.
+constexpr std::int64_t max_frames = 10'000'000;
+constexpr std::size_t max_bodies = 10'000'000;
+
+struct Scene {
+  std::string name;         // "example-2.5"
+  std::string description;  // one line
+  WorldDef world{};         // canvas, dt, integrator, update order, boundary, seed
+  std::vector<BodyGroup> bodies;
+  std::vector<SceneField> fields;
+  std::int64_t frames = 600;
+  PressAction on_press = PressAction::none;
+  InputScript input{};
+  // Where the physics origin sits on the canvas (the galaxy draws with
+  // translate(width / 2, height / 2)); only drawing uses it.
+  Vec2 origin{};
+
+  // Throws calder::Error naming the scene and the field for anything out of
+  // range (counts, masses, ranges, NaN, field parameters).
+  void validate() const;
+};
+
+// The input of one frame.
+struct InputState {
+  bool mouse_pressed = false;
+  Vec2 mouse{};
+};
+
+// Runs a scene: builds the world (seeding the generator first, then drawing
+// the bodies in order, as p5's setup() would after randomSeed), and steps it
+// one frame at a time with the mouse's events applied first, as p5 fires
+// mousePressed / mouseDragged / mouseReleased before draw().
+class Simulation {
+ public:
+  // seed replaces the scene's seed (calder run --seed).
+  explicit Simulation(Scene scene, std::optional<std::uint32_t> seed = std::nullopt);
+
+  // One frame with this input: press, drag and release events, the fields'
+  // bindings, then one world step.
+  void step(const InputState& input);
+  // One frame with the scene's scripted input for the next frame number.
+  void step();
+
+  // Replaces the bodies by these (calder run --state), in order.
+  void set_bodies(const std::vector<BodyDef>& bodies);
+  // Rebuilds the bodies from the scene's groups, continuing the generator
+  // (the book's reset() on mouse press).
+  void reset_bodies();
+
+  [[nodiscard]] World& world() { return world_; }
+  [[nodiscard]] const World& world() const { return world_; }
+  [[nodiscard]] const Scene& scene() const { return scene_; }
+  // Frames stepped so far (0 right after setup).
+  [[nodiscard]] std::int64_t frame() const { return frame_; }
+
+ private:
+  struct Drag {
+    std::size_t field = 0;
+    Vec2 offset{};
+  };
+  void handle_press(Vec2 mouse);
+
+  Scene scene_;
+  World world_;  // its field k is the scene's field k
+  std::int64_t frame_ = 0;
+  bool was_pressed_ = false;
+  Vec2 last_mouse_{};
+  std::vector<Drag> drags_;
+};
+
+// --- built-in scenes: every example of the chapter ---
+
+struct SceneInfo {
+  std::string name;
+  std::string description;
+};
+
+// The built-in scenes, in the book's order.
+const std::vector<SceneInfo>& builtin_scenes();
+// The built-in scene of that name; throws calder::Error (listing the names)
+// if there is none.
+Scene builtin_scene(const std::string& name);
+
+}  // namespace calder

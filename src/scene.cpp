@@ -1,0 +1,263 @@
+#include "calder/scene.hpp"
+
+#include <cmath>
+#include <string>
+#include <utility>
+#include <variant>
+
+#include "calder/error.hpp"
+
+namespace calder {
+
+namespace {
+
+constexpr double kHalfPi = 1.5707963267948966;  // p5's HALF_PI (Math.PI / 2)
+
+void require_draw(const Draw& d, const std::string& where, const char* what, bool positive) {
+  const std::string w = where + " " + what;
+  switch (d.kind) {
+    case Draw::Kind::fixed:
+      if (positive) {
+        detail::require_positive(d.value, w.c_str(), "value");
+      } else {
+        detail::require_finite(d.value, w.c_str(), "value");
+      }
+      return;
+    case Draw::Kind::uniform:
+      detail::require_finite(d.min, w.c_str(), "min");
+      detail::require_finite(d.max, w.c_str(), "max");
+      if (positive) {
+        detail::require_positive(d.min, w.c_str(), "min");
+        detail::require_positive(d.max, w.c_str(), "max");
+      }
+      return;
+    case Draw::Kind::linear:
+      detail::require_finite(d.value, w.c_str(), "start");
+      detail::require_finite(d.step, w.c_str(), "step");
+      return;
+  }
+}
+
+}  // namespace
+
+double Draw::sample(Random& rng, std::size_t index) const {
+  switch (kind) {
+    case Kind::fixed:
+      return value;
+    case Kind::uniform:
+      return rng.random(min, max);
+    case Kind::linear:
+      return value + static_cast<double>(index) * step;  // JS: start + i * step
+  }
+  return value;
+}
+
+double RadiusRule::radius_for(double mass) const {
+  switch (kind) {
+    case Kind::fixed:
+      return k;
+    case Kind::per_mass:
+      return mass * k;
+    case Kind::per_sqrt_mass:
+      return std::sqrt(mass) * k;
+  }
+  return k;
+}
+
+bool InputScript::pressed_at(std::int64_t frame) const {
+  for (const FrameRange& r : mouse_pressed) {
+    if (frame >= r.first && frame <= r.last) return true;
+  }
+  return false;
+}
+
+Vec2 InputScript::mouse_at(std::int64_t frame) const {
+  Vec2 at = mouse;
+  for (const MouseMove& m : moves) {
+    if (m.frame > frame) break;
+    at = m.position;
+  }
+  return at;
+}
+
+void Scene::validate() const {
+  const std::string where = "scene " + (name.empty() ? std::string("(unnamed)") : name);
+  if (frames < 0 || frames > max_frames) {
+    throw Error(where + ": frames must be between 0 and " + std::to_string(max_frames) + " (got " +
+                std::to_string(frames) + ")");
+  }
+  detail::require_positive(world.width, where.c_str(), "width");
+  detail::require_positive(world.height, where.c_str(), "height");
+  detail::require_positive(world.dt, where.c_str(), "dt");
+  world.boundary.validate(where.c_str());
+  if (world.update_order == UpdateOrder::sequential &&
+      world.integrator != Integrator::semi_implicit_euler) {
+    throw Error(where + ": the sequential update order needs the semi_implicit_euler integrator");
+  }
+  std::size_t total = 0;
+  for (std::size_t g = 0; g < bodies.size(); ++g) {
+    const BodyGroup& group = bodies[g];
+    const std::string w = where + ": bodies[" + std::to_string(g) + "]";
+    if (group.count > max_bodies || total + group.count > max_bodies) {
+      throw Error(w + ": more than " + std::to_string(max_bodies) + " bodies");
+    }
+    total += group.count;
+    require_draw(group.x, w, "x", false);
+    require_draw(group.y, w, "y", false);
+    require_draw(group.mass, w, "mass", true);
+    require_draw(group.vx, w, "vx", false);
+    require_draw(group.vy, w, "vy", false);
+    if (group.layout == BodyGroup::Layout::orbit) {
+      detail::require_finite(group.center.x, w.c_str(), "center.x");
+      detail::require_finite(group.center.y, w.c_str(), "center.y");
+      require_draw(group.distance, w, "distance", false);
+      require_draw(group.speed, w, "speed", false);
+    }
+    detail::require_non_negative(group.radius.k, w.c_str(), "radius");
+    if (group.friction) detail::require_non_negative(*group.friction, w.c_str(), "friction");
+    detail::require_non_negative(group.drag_area, w.c_str(), "drag_area");
+  }
+  for (std::size_t k = 0; k < fields.size(); ++k) {
+    const SceneField& f = fields[k];
+    const std::string w =
+        where + ": fields[" + std::to_string(k) + "] (" + field_name(f.field) + ")";
+    try {
+      calder::validate(f.field);
+    } catch (const Error& e) {
+      throw Error(where + ": fields[" + std::to_string(k) + "]: " + e.what());
+    }
+    const bool positioned =
+        std::holds_alternative<Fan>(f.field) || std::holds_alternative<Attractor>(f.field);
+    if (f.binding.follow_mouse && !positioned) {
+      throw Error(w + ": only a fan or an attractor can follow the mouse");
+    }
+    if (f.binding.draggable && !std::holds_alternative<Attractor>(f.field)) {
+      throw Error(w + ": only an attractor can be dragged");
+    }
+  }
+  for (const FrameRange& r : input.mouse_pressed) {
+    if (r.first < 1 || r.last < r.first) {
+      throw Error(where + ": mouse_pressed range " + std::to_string(r.first) + "-" +
+                  std::to_string(r.last) + " must satisfy 1 <= first <= last");
+    }
+  }
+  detail::require_finite(input.mouse.x, where.c_str(), "mouse.x");
+  detail::require_finite(input.mouse.y, where.c_str(), "mouse.y");
+  std::int64_t previous = 0;
+  for (const MouseMove& m : input.moves) {
+    if (m.frame < previous) throw Error(where + ": mouse moves must be sorted by frame");
+    previous = m.frame;
+    detail::require_finite(m.position.x, where.c_str(), "mouse move x");
+    detail::require_finite(m.position.y, where.c_str(), "mouse move y");
+  }
+  detail::require_finite(origin.x, where.c_str(), "origin.x");
+  detail::require_finite(origin.y, where.c_str(), "origin.y");
+}
+
+namespace {
+
+WorldDef seeded(WorldDef def, std::optional<std::uint32_t> seed) {
+  if (seed) def.seed = *seed;
+  return def;
+}
+
+}  // namespace
+
+Simulation::Simulation(Scene scene, std::optional<std::uint32_t> seed)
+    : scene_((scene.validate(), std::move(scene))),
+      world_(seeded(scene_.world, seed)),
+      last_mouse_(scene_.input.mouse) {
+  for (const SceneField& f : scene_.fields) world_.add_field(f.field);
+  reset_bodies();
+}
+
+void Simulation::reset_bodies() {
+  world_.clear_bodies();
+  Random& rng = world_.random();
+  for (const BodyGroup& group : scene_.bodies) {
+    for (std::size_t i = 0; i < group.count; ++i) {
+      BodyDef def;
+      if (group.layout == BodyGroup::Layout::grid) {
+        // Arguments evaluate left to right: x, then y, then mass (then velocity).
+        def.position.x = group.x.sample(rng, i);
+        def.position.y = group.y.sample(rng, i);
+        def.mass = group.mass.sample(rng, i);
+        def.velocity.x = group.vx.sample(rng, i);
+        def.velocity.y = group.vy.sample(rng, i);
+      } else {
+        // Exercise 2.16: pos = random2D(); vel = pos.copy(); vel.setMag(speed);
+        // pos.setMag(distance); vel.rotate(HALF_PI); m = random(...).
+        Vec2 direction = rng.random2d();
+        Vec2 velocity = direction;
+        velocity.set_mag(group.speed.sample(rng, i));
+        direction.set_mag(group.distance.sample(rng, i));
+        velocity.rotate(kHalfPi);
+        def.mass = group.mass.sample(rng, i);
+        def.position = group.center + direction;
+        def.velocity = velocity;
+      }
+      def.radius = group.radius.radius_for(def.mass);
+      def.friction = group.friction;
+      def.drag_area = group.drag_area;
+      world_.add_body(def);
+    }
+  }
+}
+
+void Simulation::set_bodies(const std::vector<BodyDef>& bodies) {
+  World fresh = world_;  // validate every body before replacing any
+  fresh.clear_bodies();
+  for (const BodyDef& def : bodies) fresh.add_body(def);
+  world_ = std::move(fresh);
+}
+
+void Simulation::handle_press(Vec2 mouse) {
+  if (scene_.on_press == PressAction::reset) reset_bodies();
+  for (std::size_t k = 0; k < scene_.fields.size(); ++k) {
+    if (!scene_.fields[k].binding.draggable) continue;
+    auto& attractor = std::get<Attractor>(world_.field(k));
+    // The book's handlePress: grab when the press is within `mass` pixels.
+    if (mouse.dist(attractor.position) < attractor.mass) {
+      drags_.push_back({k, attractor.position - mouse});
+    }
+  }
+}
+
+void Simulation::step(const InputState& input) {
+  detail::require_finite(input.mouse.x, "Simulation::step", "mouse.x");
+  detail::require_finite(input.mouse.y, "Simulation::step", "mouse.y");
+  if (input.mouse_pressed && !was_pressed_) handle_press(input.mouse);
+  if (input.mouse_pressed) {
+    // p5 fires mouseDragged only when the mouse moves; the attractor stays put
+    // to the bit otherwise.
+    const bool moved = input.mouse != last_mouse_;
+    for (const Drag& d : drags_) {
+      if (!moved) break;
+      std::get<Attractor>(world_.field(d.field)).position = input.mouse + d.offset;
+    }
+  } else {
+    drags_.clear();
+  }
+  for (std::size_t k = 0; k < scene_.fields.size(); ++k) {
+    const FieldBinding& b = scene_.fields[k].binding;
+    Field& field = world_.field(k);
+    if (b.while_pressed) {
+      std::visit([&](auto& f) { f.enabled = input.mouse_pressed; }, field);
+    }
+    if (b.follow_mouse) {
+      if (auto* fan = std::get_if<Fan>(&field)) fan->position = input.mouse;
+      if (auto* attractor = std::get_if<Attractor>(&field)) attractor->position = input.mouse;
+    }
+  }
+  was_pressed_ = input.mouse_pressed;
+  last_mouse_ = input.mouse;
+  world_.step();
+  ++frame_;
+}
+
+void Simulation::step() {
+  const std::int64_t next = frame_ + 1;
+  step(InputState{scene_.input.pressed_at(next), scene_.input.mouse_at(next)});
+}
+
+}  // namespace calder
