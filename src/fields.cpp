@@ -66,24 +66,45 @@ void accumulate_mutual(const MutualAttraction& f, const FieldContext& c, std::si
                        std::size_t last, std::span<double> ax, std::span<double> ay) {
   const BodyView& b = c.bodies;
   const std::size_t n = b.size();
-  if (first == 0 && last == n) {
-    // All bodies: one force per pair, +F on j and exactly -F on i.
-    for (std::size_t i = 0; i < n; ++i) {
-      for (std::size_t j = i + 1; j < n; ++j) {
-        const Vec2 force = attraction(b.position(i), b.mass[i], b.position(j), b.mass[j], f.law);
-        add_force(ax, ay, j, force, b.mass[j]);
-        add_force(ax, ay, i, -force, b.mass[i]);
+  const auto central_pulls = [&](std::size_t i) {
+    if (!f.central) return;
+    add_force(ax, ay, i,
+              attraction(f.central->position, f.central->mass, b.position(i), b.mass[i], f.law),
+              b.mass[i]);
+  };
+  if (first != 0 || last != n) {
+    // A sub-range (sequential update): each target feels the central body,
+    // then every other body in index order at its current position (example 2.9).
+    for (std::size_t i = first; i < last; ++i) {
+      central_pulls(i);
+      for (std::size_t j = 0; j < n; ++j) {
+        if (j == i) continue;
+        add_force(ax, ay, i, attraction(b.position(j), b.mass[j], b.position(i), b.mass[i], f.law),
+                  b.mass[i]);
       }
     }
     return;
   }
-  // A sub-range (sequential update): each target feels every other body, in
-  // index order, at its current position (example 2.9).
-  for (std::size_t i = first; i < last; ++i) {
-    for (std::size_t j = 0; j < n; ++j) {
-      if (j == i) continue;
-      add_force(ax, ay, i, attraction(b.position(j), b.mass[j], b.position(i), b.mass[i], f.law),
-                b.mass[i]);
+  if (f.order == PairOrder::by_source) {
+    // For each source i: the central body pulls i, then i pulls every other body.
+    for (std::size_t i = 0; i < n; ++i) {
+      central_pulls(i);
+      for (std::size_t j = 0; j < n; ++j) {
+        if (j == i) continue;
+        add_force(ax, ay, j, attraction(b.position(i), b.mass[i], b.position(j), b.mass[j], f.law),
+                  b.mass[j]);
+      }
+    }
+    return;
+  }
+  // Pairwise: the central body first, then one force per pair, +F on j and
+  // exactly -F on i.
+  for (std::size_t i = 0; i < n; ++i) central_pulls(i);
+  for (std::size_t i = 0; i < n; ++i) {
+    for (std::size_t j = i + 1; j < n; ++j) {
+      const Vec2 force = attraction(b.position(i), b.mass[i], b.position(j), b.mass[j], f.law);
+      add_force(ax, ay, j, force, b.mass[j]);
+      add_force(ax, ay, i, -force, b.mass[i]);
     }
   }
 }
@@ -150,7 +171,13 @@ void validate(const Field& field) {
             detail::require_positive(f.mass, where, "mass");
             f.law.validate(where);
           },
-          [&](const MutualAttraction& f) { f.law.validate(where); },
+          [&](const MutualAttraction& f) {
+            f.law.validate(where);
+            if (f.central) {
+              require_finite_vec(f.central->position, where, "central.position");
+              detail::require_positive(f.central->mass, where, "central.mass");
+            }
+          },
           [&](const CustomForce& f) {
             if (!f.force) throw Error(where_s + ": force function is empty");
           },
