@@ -190,6 +190,246 @@ Scene exercise_2_16() {
                              .order = PairOrder::by_source,
                              .central = CentralBody{.position = {0.0, 0.0}, .mass = 500.0}}));
   s.origin = {320.0, 120.0};  // the sketch translates to the canvas centre
+  s.look.trails = true;       // background(255, 50)
+  s.look.trail_alpha = 50.0;
+  s.look.body_gray = 0.0;  // fill(0, 100)
+  s.look.body_alpha = 100.0;
+  return s;
+}
+
+// --- the exercises (constants are calder's where the book leaves them open) ---
+
+Scene exercise_2_1() {
+  // The book's solution: helium (0, -0.02), wind map(noise(t), 0, 1, -0.01, 0.01)
+  // with t from 1000 in steps of 0.01, a 48 px balloon losing a quarter of its
+  // speed at the ceiling.
+  Scene s = base("exercise-2.1",
+                 "A helium balloon drifts in Perlin-noise wind and bounces off the ceiling");
+  s.bodies.push_back(one_body({320.0, 120.0}, 1.0, fixed_radius(24.0)));
+  s.fields.push_back(field(Helium{.lift = 0.02}));
+  s.fields.push_back(field(NoiseWind{.strength = 0.01, .rate = 0.01, .offset = 1000.0}));
+  s.world.boundary =
+      Boundary::bounce(0.75, true, {.left = true, .right = true, .top = true, .bottom = false});
+  return s;
+}
+
+BodyGroup random_movers(std::size_t count, double min_mass, double max_mass, double speed) {
+  BodyGroup g;
+  g.count = count;
+  g.x = Draw::uniform(0.0, 640.0);
+  g.y = Draw::uniform(0.0, 240.0);
+  g.mass = Draw::uniform(min_mass, max_mass);
+  g.vx = Draw::uniform(-speed, speed);
+  g.vy = Draw::uniform(-speed, speed);
+  g.radius = radius_per_mass(8.0);
+  return g;
+}
+
+Scene exercise_2_3() {
+  Scene s =
+      base("exercise-2.3",
+           "An invisible force pushes movers back from the edges, stronger the closer they come");
+  s.bodies.push_back(random_movers(10, 0.5, 3.0, 3.0));
+  s.fields.push_back(field(EdgeForce{.strength = 1.0, .margin = 60.0}));
+  return s;
+}
+
+Scene exercise_2_4() {
+  Scene s =
+      base("exercise-2.4",
+           "Movers of different sizes bounce when their edge, not their centre, meets a wall");
+  BodyGroup movers;
+  movers.count = 5;
+  movers.x = Draw::linear(80.0, 120.0);
+  movers.y = Draw::fixed(40.0);
+  movers.mass = Draw::linear(1.0, 0.75);
+  movers.vx = Draw::linear(-2.0, 1.0);
+  movers.radius = radius_per_mass(8.0);
+  s.bodies.push_back(movers);
+  s.fields.push_back(field(Gravity{.g = {0.0, 0.1}, .scale_by_mass = true}));
+  s.fields.push_back(field(Wind{.force = {0.1, 0.0}}, while_pressed()));
+  s.world.boundary = Boundary::bounce(1.0, true);
+  return s;
+}
+
+Scene exercise_2_5() {
+  Scene s = base("exercise-2.5", "A fan at the mouse blows the circles away from it");
+  BodyGroup movers;
+  movers.count = 8;
+  movers.x = Draw::linear(60.0, 75.0);
+  movers.y = Draw::fixed(200.0);
+  movers.mass = Draw::uniform(1.0, 3.0);
+  movers.radius = radius_per_mass(8.0);
+  s.bodies.push_back(movers);
+  s.fields.push_back(field(Gravity{.g = {0.0, 0.2}, .scale_by_mass = true}));
+  s.fields.push_back(field(Fan{.position = {0.0, 120.0}, .strength = 2.0, .reach = 250.0},
+                           {.follow_mouse = true}));
+  s.fields.push_back(field(Friction{.mu = 0.1}));
+  s.world.boundary = Boundary::bounce(0.6, true);
+  s.input.mouse = {0.0, 200.0};
+  return s;
+}
+
+Scene exercise_2_6() {
+  Scene s = base("exercise-2.6",
+                 "Four movers of different mass slide on floors of different roughness (own "
+                 "friction coefficients)");
+  const double mu[] = {0.01, 0.05, 0.1, 0.3};
+  for (int k = 0; k < 4; ++k) {
+    const double mass = 1.0 + k;  // on the floor from the start: y = height - radius
+    BodyGroup g = one_body({80.0 + 160.0 * k, 240.0 - 8.0 * mass}, mass, radius_per_mass(8.0));
+    g.friction = mu[k];
+    s.bodies.push_back(g);
+  }
+  s.fields.push_back(field(Gravity{.g = {0.0, 0.2}, .scale_by_mass = true}));
+  s.fields.push_back(field(Wind{.force = {0.2, 0.0}}, while_pressed()));
+  s.fields.push_back(field(Friction{.mu = 0.1}));
+  s.world.boundary = Boundary::bounce(0.9, true, {.top = false});
+  s.world.boundary.timing = BoundaryTiming::before_update;
+  s.input.mouse_pressed.push_back({1, 30});  // a push to the right to start them sliding
+  return s;
+}
+
+Scene exercise_2_7() {
+  Scene s = base("exercise-2.7", "Toss a mover: grab it with the mouse, drag, and let go");
+  s.bodies.push_back(one_body({320.0, 60.0}, 2.0, fixed_radius(24.0)));
+  s.fields.push_back(field(Gravity{.g = {0.0, 0.2}, .scale_by_mass = true}));
+  s.fields.push_back(field(Drag{.c = 0.002}));
+  s.world.boundary = Boundary::bounce(0.8, true);
+  s.on_press = PressAction::toss;
+  return s;
+}
+
+Scene exercise_2_8() {
+  Scene s = base("exercise-2.8",
+                 "Strong drag slows but never reverses movers dropped from different heights");
+  BodyGroup movers;
+  movers.count = 5;
+  movers.x = Draw::linear(64.0, 128.0);
+  movers.y = Draw::linear(10.0, 25.0);
+  movers.mass = Draw::fixed(2.0);
+  movers.radius = fixed_radius(16.0);
+  s.bodies.push_back(movers);
+  s.fields.push_back(
+      field(Liquid{.region = {0.0, 150.0, 640.0, 90.0}, .c = 2.0, .never_reverse = true}));
+  s.fields.push_back(field(Gravity{.g = {0.0, 0.1}, .scale_by_mass = true}));
+  s.world.boundary = Boundary::bounce(0.5, true, {.left = false, .right = false, .top = false});
+  return s;
+}
+
+Scene exercise_2_9() {
+  Scene s = base("exercise-2.9", "Boxes of equal mass fall into water; wider boxes feel more drag");
+  for (int k = 0; k < 4; ++k) {
+    const double half_side = 8.0 + 4.0 * k;
+    BodyGroup box = one_body({100.0 + 140.0 * k, 20.0}, 2.0, fixed_radius(half_side));
+    box.drag_area = 2.0 * half_side / 20.0;  // the side facing the motion, in units of 20 px
+    s.bodies.push_back(box);
+  }
+  s.fields.push_back(
+      field(Liquid{.region = {0.0, 100.0, 640.0, 140.0}, .c = 0.5, .never_reverse = true}));
+  s.fields.push_back(field(Gravity{.g = {0.0, 0.1}, .scale_by_mass = true}));
+  s.world.boundary = Boundary::bounce(0.5, true, {.left = false, .right = false, .top = false});
+  s.look.squares = true;
+  return s;
+}
+
+Scene exercise_2_10() {
+  Scene s = base("exercise-2.10",
+                 "Lift: a glider moving right is held up by a force perpendicular to its motion");
+  s.bodies.push_back(one_body({0.0, 120.0}, 1.0, fixed_radius(10.0), {4.0, 0.0}));
+  s.fields.push_back(field(Gravity{.g = {0.0, 0.05}}));
+  s.fields.push_back(field(Lift{.coefficient = 0.003}));
+  s.fields.push_back(field(Drag{.c = 0.0005}));
+  s.world.boundary = Boundary::wrap(true);
+  return s;
+}
+
+Scene exercise_2_11() {
+  Scene s =
+      base("exercise-2.11", "Mass as area: the circle's area, not its diameter, grows with mass");
+  BodyGroup movers;
+  movers.count = 4;
+  movers.x = Draw::linear(100.0, 140.0);
+  movers.y = Draw::fixed(60.0);
+  movers.mass = Draw::linear(1.0, 3.0);
+  movers.radius = radius_per_sqrt_mass(12.0);
+  s.bodies.push_back(movers);
+  s.fields.push_back(field(Gravity{.g = {0.0, 0.1}, .scale_by_mass = true}));
+  s.fields.push_back(field(Wind{.force = {0.2, 0.0}}, while_pressed()));
+  s.world.boundary = Boundary::bounce(0.9, true, {.top = false});
+  return s;
+}
+
+Scene exercise_2_12() {
+  Scene s = base("exercise-2.12",
+                 "A hundred movers wander among three invisible attractors, drawn as trails");
+  BodyGroup movers = random_movers(100, 0.5, 2.0, 1.0);
+  movers.radius = radius_per_mass(4.0);
+  s.bodies.push_back(movers);
+  const Vec2 at[] = {{160.0, 120.0}, {330.0, 60.0}, {500.0, 170.0}};
+  for (const Vec2 p : at) {
+    SceneField f = field(Attractor{.position = p, .mass = 20.0, .law = AttractionLaw::book()});
+    f.visible = false;
+    s.fields.push_back(f);
+  }
+  s.look.trails = true;
+  s.look.trail_alpha = 20.0;
+  return s;
+}
+
+Scene exercise_2_13() {
+  // |F| = G M m / d^2 - R M m / d^3: zero at d = R / G = 60 px, so movers
+  // settle into a ring around the attractor instead of falling in.
+  Scene s = base("exercise-2.13",
+                 "A custom force law: the attractor pulls from afar and pushes away up close");
+  s.bodies.push_back(random_movers(30, 0.5, 2.0, 0.5));
+  AttractionLaw law = AttractionLaw::book(1.0, 5.0, 1000.0);
+  law.repulsion = 60.0;
+  law.repulsion_exponent = 3.0;
+  s.fields.push_back(
+      field(Attractor{.position = {320.0, 120.0}, .mass = 20.0, .law = law}, draggable()));
+  s.fields.push_back(field(Drag{.c = 0.02}));
+  return s;
+}
+
+Scene exercise_2_14() {
+  // The figure-eight choreography of three equal masses (Chenciner and
+  // Montgomery 2000; initial conditions from Simo): G = m = 1, period
+  // 6.32591398. Scaled to the canvas: 100 px per length unit and 60 frames per
+  // time unit, so G = 100^3 / 60^2 and velocities times 100 / 60.
+  Scene s = base("exercise-2.14",
+                 "Three bodies chase each other along a figure eight (unclamped gravity)");
+  const double length = 100.0;
+  const double time = 60.0;
+  const Vec2 centre{320.0, 120.0};
+  const Vec2 x1{0.97000436, -0.24308753};
+  const Vec2 v3{-0.93240737, -0.86473146};
+  const Vec2 v1 = v3 * -0.5;
+  const double speed = length / time;
+  s.bodies.push_back(one_body(centre + x1 * length, 1.0, fixed_radius(8.0), v1 * speed));
+  s.bodies.push_back(one_body(centre - x1 * length, 1.0, fixed_radius(8.0), v1 * speed));
+  s.bodies.push_back(one_body(centre, 1.0, fixed_radius(8.0), v3 * speed));
+  s.fields.push_back(field(
+      MutualAttraction{.law = AttractionLaw::newtonian(length * length * length / (time * time))}));
+  s.world.integrator = Integrator::rk4;
+  s.frames = 380;  // one period is 6.32591398 * 60 = 379.55 frames
+  s.look.trails = true;
+  s.look.trail_alpha = 10.0;
+  return s;
+}
+
+Scene exercise_2_15() {
+  Scene s = base("exercise-2.15", "Bodies repel one another while all are drawn to the mouse");
+  s.bodies.push_back(random_movers(20, 1.0, 3.0, 0.0));
+  // Repulsion (G = -3) keeps bodies apart against the mouse's pull (mass 40); it must
+  // fade with distance (clamp up to 1000 px), or the crowd pushes its fringe away forever.
+  s.fields.push_back(field(MutualAttraction{.law = AttractionLaw::book(-3.0, 5.0, 1000.0)}));
+  s.fields.push_back(field(
+      Attractor{
+          .position = {320.0, 120.0}, .mass = 40.0, .law = AttractionLaw::book(1.0, 5.0, 25.0)},
+      {.follow_mouse = true}));
+  s.fields.push_back(field(Drag{.c = 0.05}));
+  s.input.mouse = {320.0, 120.0};
   return s;
 }
 
@@ -199,10 +439,18 @@ struct Entry {
 };
 
 const Entry kScenes[] = {
-    {"example-2.1", example_2_1},     {"example-2.2", example_2_2}, {"example-2.3", example_2_3},
-    {"example-2.4", example_2_4},     {"example-2.5", example_2_5}, {"example-2.6", example_2_6},
-    {"example-2.7", example_2_7},     {"example-2.8", example_2_8}, {"example-2.9", example_2_9},
-    {"exercise-2.16", exercise_2_16},
+    {"example-2.1", example_2_1},     {"example-2.2", example_2_2},
+    {"example-2.3", example_2_3},     {"example-2.4", example_2_4},
+    {"example-2.5", example_2_5},     {"example-2.6", example_2_6},
+    {"example-2.7", example_2_7},     {"example-2.8", example_2_8},
+    {"example-2.9", example_2_9},     {"exercise-2.1", exercise_2_1},
+    {"exercise-2.3", exercise_2_3},   {"exercise-2.4", exercise_2_4},
+    {"exercise-2.5", exercise_2_5},   {"exercise-2.6", exercise_2_6},
+    {"exercise-2.7", exercise_2_7},   {"exercise-2.8", exercise_2_8},
+    {"exercise-2.9", exercise_2_9},   {"exercise-2.10", exercise_2_10},
+    {"exercise-2.11", exercise_2_11}, {"exercise-2.12", exercise_2_12},
+    {"exercise-2.13", exercise_2_13}, {"exercise-2.14", exercise_2_14},
+    {"exercise-2.15", exercise_2_15}, {"exercise-2.16", exercise_2_16},
 };
 
 }  // namespace

@@ -97,6 +97,16 @@ void AttractionLaw::validate(const char* where) const {
   if (custom) return;
   detail::require_finite(G, w.c_str(), "G");
   detail::require_non_negative(softening, w.c_str(), "softening");
+  detail::require_finite(exponent, w.c_str(), "exponent");
+  detail::require_non_negative(repulsion, w.c_str(), "repulsion");
+  detail::require_finite(repulsion_exponent, w.c_str(), "repulsion_exponent");
+  if (exponent != 2.0 && (softening != 0.0 || clamp == DistanceClamp::squared_distance)) {
+    throw Error(w + ": softening and the squared-distance clamp need exponent 2 (got " +
+                detail::format_number(exponent) + ")");
+  }
+  if (repulsion != 0.0 && (softening != 0.0 || clamp == DistanceClamp::squared_distance)) {
+    throw Error(w + ": a repulsive core needs the distance clamp or no clamp, without softening");
+  }
   if (clamp != DistanceClamp::none) {
     detail::require_non_negative(min, w.c_str(), "min");
     detail::require_non_negative(max, w.c_str(), "max");
@@ -118,6 +128,33 @@ double strength_of(double G, double source_mass, double target_mass, double deno
   return numerator / denominator;
 }
 
+// The magnitude at distance d (already clamped) of the power law with its
+// repulsive core. Exponent 2 keeps the book's d * d, bit for bit.
+double power_strength(const AttractionLaw& law, double source_mass, double target_mass, double d) {
+  const double denominator = law.exponent == 2.0 ? d * d : std::pow(d, law.exponent);
+  double strength = strength_of(law.G, source_mass, target_mass, denominator, law.product);
+  if (law.repulsion != 0.0) {
+    strength -= law.repulsion * source_mass * target_mass / std::pow(d, law.repulsion_exponent);
+  }
+  return strength;
+}
+
+// An antiderivative of d^-p: d^(1-p) / (1-p), or ln d for p = 1.
+double power_integral(double d, double p) {
+  return p == 1.0 ? std::log(d) : std::pow(d, 1.0 - p) / (1.0 - p);
+}
+
+// U(d) with dU/dd = |F(d)| (attraction positive) for the unclamped power law
+// with its repulsive core; for exponent 2 and no core, -G M m / d.
+double power_potential(const AttractionLaw& law, double source_mass, double target_mass, double d) {
+  const double gmm = law.G * source_mass * target_mass;
+  double u = law.exponent == 2.0 ? -gmm / d : gmm * power_integral(d, law.exponent);
+  if (law.repulsion != 0.0) {
+    u -= law.repulsion * source_mass * target_mass * power_integral(d, law.repulsion_exponent);
+  }
+  return u;
+}
+
 }  // namespace
 
 Vec2 attraction(Vec2 source_position, double source_mass, Vec2 target_position, double target_mass,
@@ -137,7 +174,7 @@ Vec2 attraction(Vec2 source_position, double source_mass, Vec2 target_position, 
     case DistanceClamp::distance: {
       double d = force.mag();
       d = constrain(d, law.min, law.max);
-      return force.set_mag(strength_of(law.G, source_mass, target_mass, d * d, law.product));
+      return force.set_mag(power_strength(law, source_mass, target_mass, d));
     }
     case DistanceClamp::squared_distance: {
       const double dsq = constrain(force.mag_sq(), law.min, law.max);
@@ -149,7 +186,10 @@ Vec2 attraction(Vec2 source_position, double source_mass, Vec2 target_position, 
   const double d_sq = force.mag_sq();
   if (d_sq == 0.0) return {};  // coincident: no direction (softened force is zero there too)
   if (law.softening == 0.0) {
-    return force.set_mag(strength_of(law.G, source_mass, target_mass, d_sq, law.product));
+    if (law.exponent == 2.0 && law.repulsion == 0.0) {
+      return force.set_mag(strength_of(law.G, source_mass, target_mass, d_sq, law.product));
+    }
+    return force.set_mag(power_strength(law, source_mass, target_mass, std::sqrt(d_sq)));
   }
   // Plummer: |F| = G M m d / (d^2 + eps^2)^(3/2).
   const double s_sq = d_sq + law.softening * law.softening;
@@ -163,18 +203,18 @@ double attraction_potential(double distance, double source_mass, double target_m
   if (law.custom) {
     throw Error("attraction_potential: a custom force law has no known potential");
   }
-  const double gmm = law.G * source_mass * target_mass;
   double lo = 0.0;
   double hi = 0.0;
   switch (law.clamp) {
     case DistanceClamp::none:
-      if (law.softening == 0.0) {
-        if (distance == 0.0) {
-          throw Error("attraction_potential: unbounded at distance 0 without softening");
-        }
-        return -gmm / distance;
+      if (law.softening != 0.0) {
+        const double gmm = law.G * source_mass * target_mass;
+        return -gmm / std::sqrt(distance * distance + law.softening * law.softening);
       }
-      return -gmm / std::sqrt(distance * distance + law.softening * law.softening);
+      if (distance == 0.0) {
+        throw Error("attraction_potential: unbounded at distance 0 without softening");
+      }
+      return power_potential(law, source_mass, target_mass, distance);
     case DistanceClamp::distance:
       lo = law.min;
       hi = law.max;
@@ -184,11 +224,17 @@ double attraction_potential(double distance, double source_mass, double target_m
       hi = std::sqrt(law.max);
       break;
   }
-  // Force magnitude gmm / lo^2 below lo, gmm / d^2 between, gmm / hi^2 above:
-  // U is -gmm / d between and continues linearly with that slope outside.
-  if (distance < lo) return -gmm / lo + gmm / (lo * lo) * (distance - lo);
-  if (distance > hi) return -gmm / hi + gmm / (hi * hi) * (distance - hi);
-  return -gmm / distance;
+  // The force is constant below lo and above hi, so U continues linearly
+  // there with the slope it has at the clamp: continuous everywhere.
+  if (distance < lo) {
+    return power_potential(law, source_mass, target_mass, lo) +
+           power_strength(law, source_mass, target_mass, lo) * (distance - lo);
+  }
+  if (distance > hi) {
+    return power_potential(law, source_mass, target_mass, hi) +
+           power_strength(law, source_mass, target_mass, hi) * (distance - hi);
+  }
+  return power_potential(law, source_mass, target_mass, distance);
 }
 
 }  // namespace calder

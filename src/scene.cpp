@@ -1,5 +1,6 @@
 #include "calder/scene.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 #include <utility>
@@ -150,6 +151,13 @@ void Scene::validate() const {
     detail::require_finite(m.position.x, where.c_str(), "mouse move x");
     detail::require_finite(m.position.y, where.c_str(), "mouse move y");
   }
+  for (const double v : {look.trail_alpha, look.body_gray, look.body_alpha}) {
+    if (!(v >= 0.0 && v <= 255.0)) {
+      throw Error(where +
+                  ": look values (trail_alpha, body_gray, body_alpha) must be in 0..255 (got " +
+                  detail::format_number(v) + ")");
+    }
+  }
   detail::require_finite(origin.x, where.c_str(), "origin.x");
   detail::require_finite(origin.y, where.c_str(), "origin.y");
 }
@@ -172,6 +180,7 @@ Simulation::Simulation(Scene scene, std::optional<std::uint32_t> seed)
 }
 
 void Simulation::reset_bodies() {
+  tossed_.reset();
   world_.clear_bodies();
   Random& rng = world_.random();
   for (const BodyGroup& group : scene_.bodies) {
@@ -209,10 +218,24 @@ void Simulation::set_bodies(const std::vector<BodyDef>& bodies) {
   fresh.clear_bodies();
   for (const BodyDef& def : bodies) fresh.add_body(def);
   world_ = std::move(fresh);
+  tossed_.reset();
 }
 
 void Simulation::handle_press(Vec2 mouse) {
   if (scene_.on_press == PressAction::reset) reset_bodies();
+  if (scene_.on_press == PressAction::toss) {
+    // Grab the nearest body whose circle holds the mouse (at least 10 px for points).
+    const BodyView b = world_.bodies();
+    double best = 0.0;
+    for (std::size_t i = 0; i < b.size(); ++i) {
+      const double d = mouse.dist(b.position(i));
+      if (d <= std::max(b.radius[i], 10.0) && (!tossed_ || d < best)) {
+        tossed_ = i;
+        best = d;
+      }
+    }
+    if (tossed_) toss_offset_ = b.position(*tossed_) - mouse;
+  }
   for (std::size_t k = 0; k < scene_.fields.size(); ++k) {
     if (!scene_.fields[k].binding.draggable) continue;
     auto& attractor = std::get<Attractor>(world_.field(k));
@@ -237,7 +260,9 @@ void Simulation::step(const InputState& input) {
     }
   } else {
     drags_.clear();
+    tossed_.reset();  // released: the body keeps the mouse's last velocity
   }
+  const Vec2 mouse_velocity = (input.mouse - last_mouse_) / world_.dt();
   for (std::size_t k = 0; k < scene_.fields.size(); ++k) {
     const FieldBinding& b = scene_.fields[k].binding;
     Field& field = world_.field(k);
@@ -252,6 +277,12 @@ void Simulation::step(const InputState& input) {
   was_pressed_ = input.mouse_pressed;
   last_mouse_ = input.mouse;
   world_.step();
+  if (tossed_) {
+    // Held: the body sits under the mouse and moves with it.
+    const BodyId id = world_.body(*tossed_);
+    world_.set_position(id, input.mouse + toss_offset_);
+    world_.set_velocity(id, mouse_velocity);
+  }
   ++frame_;
 }
 

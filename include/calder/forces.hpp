@@ -92,7 +92,15 @@ struct AttractionLaw {
   double max = 25.0;       // upper bound of the clamped quantity
   double softening = 0.0;  // Plummer epsilon, with DistanceClamp::none
   MassProduct product = MassProduct::left_to_right;
-  ForceLaw custom;  // when set, replaces the inverse-square law (G, clamp, ... unused)
+  // Other force laws of distance, as data (exercise 2.13): the attraction
+  // is G M m / d^exponent (2: Newton; 1 or less: weaker when close), minus a
+  // repulsive core repulsion * M * m / d^repulsion_exponent, so with
+  // repulsion_exponent > exponent bodies attract far and repel near. With the
+  // distance clamp or no clamp; softening and the squared clamp need exponent 2.
+  double exponent = 2.0;
+  double repulsion = 0.0;
+  double repulsion_exponent = 3.0;
+  ForceLaw custom;  // when set, replaces the law above (G, clamp, ... unused)
 
   // The book's law: d clamped to [min_distance, max_distance].
   static AttractionLaw book(double G = 1.0, double min_distance = 5.0, double max_distance = 25.0,

@@ -86,6 +86,7 @@ struct FieldBinding {
 struct SceneField {
   Field field;
   FieldBinding binding{};
+  bool visible = true;  // drawn (an attractor, a liquid); exercise 2.12 hides its attractors
 };
 
 // Frames (draw() numbers, 1-based, inclusive) during which the mouse is held.
@@ -110,7 +111,22 @@ struct InputScript {
   [[nodiscard]] Vec2 mouse_at(std::int64_t frame) const;
 };
 
-enum class PressAction { none, reset };
+// What a mouse press does besides the fields' bindings.
+enum class PressAction {
+  none,
+  reset,  // rebuild the bodies (example 2.5)
+  toss,   // grab the body under the mouse, carry it, release it with the mouse's velocity
+          // (exercise 2.7)
+};
+
+// How the scene wants to be drawn; the renderer reads it, the physics doesn't.
+struct SceneLook {
+  bool trails = false;        // fade instead of clearing: p5 background(255, trail_alpha)
+  double trail_alpha = 50.0;  // 0..255
+  double body_gray = 127.0;   // p5 fill(body_gray, body_alpha), 0..255
+  double body_alpha = 127.0;
+  bool squares = false;  // bodies as squares of side 2 * radius (exercise 2.9's boxes)
+};
 
 // Limits that keep a typo from asking for the impossible.
 constexpr std::int64_t max_frames = 10'000'000;
@@ -128,6 +144,7 @@ struct Scene {
   // Where the physics origin sits on the canvas (the galaxy draws with
   // translate(width / 2, height / 2)); only drawing uses it.
   Vec2 origin{};
+  SceneLook look{};
 
   // Throws calder::Error naming the scene and the field for anything out of
   // range (counts, masses, ranges, NaN, field parameters).
@@ -179,6 +196,8 @@ class Simulation {
   std::int64_t frame_ = 0;
   bool was_pressed_ = false;
   Vec2 last_mouse_{};
+  std::optional<std::size_t> tossed_;  // the body held by the mouse (PressAction::toss)
+  Vec2 toss_offset_{};
   std::vector<Drag> drags_;
 };
 
