@@ -1,0 +1,104 @@
+#include "cli.hpp"
+
+#include <CLI/CLI.hpp>
+#include <exception>
+#include <new>
+#include <sstream>
+#include <string>
+
+#include "calder/error.hpp"
+#include "errors.hpp"
+#include "progress.hpp"
+#include "render_command.hpp"
+#include "run_command.hpp"
+#include "window_command.hpp"
+
+#ifndef CALDER_VERSION
+#define CALDER_VERSION "unknown"
+#endif
+
+namespace calder::app {
+
+std::string one_line(std::string message) {
+  for (char& c : message) {
+    if (c == '\n' || c == '\r') c = ' ';
+  }
+  while (!message.empty() && message.back() == ' ') message.pop_back();
+  return message;
+}
+
+namespace {
+
+int report(std::ostream& err, const std::string& message, int code) {
+  err << "calder: " << one_line(message) << '\n';
+  err.flush();
+  return code;
+}
+
+}  // namespace
+
+int main(int argc, const char* const* argv, std::ostream& out, std::ostream& err) {
+  CLI::App app("calder: forces in 2D, after chapter 2 of The Nature of Code", "calder");
+  app.set_version_flag("--version", std::string("calder ") + CALDER_VERSION);
+  app.require_subcommand(1);
+  app.footer(
+      "Run `calder COMMAND --help` for a command's flags.\n"
+      "Exit status: 0 success, 1 the run failed, 2 bad usage or bad input.\n");
+
+  app.add_subcommand("list", "List the built-in scenes with one line on each");
+  RunOptions run_options;
+  CLI::App* run = add_run_command(app, run_options);
+  RenderOptions render_options;
+  CLI::App* render = add_render_command(app, render_options);
+  WindowOptions window_options;
+  CLI::App* window = add_window_command(app, window_options);
+
+  try {
+    try {
+      app.parse(argc, argv);
+    } catch (const CLI::ParseError& e) {
+      if (e.get_exit_code() == static_cast<int>(CLI::ExitCodes::Success)) {
+        // --help, --help-all, --version: to `out`, exit 0.
+        std::ostringstream help_err;
+        app.exit(e, out, help_err);
+        return exit_success;
+      }
+      std::string hint = "see 'calder --help'";
+      if (run->parsed()) hint = "see 'calder run --help'";
+      if (render->parsed()) hint = "see 'calder render --help'";
+      if (window->parsed()) hint = "see 'calder window --help'";
+      std::string what = e.what();
+      if (dynamic_cast<const CLI::RequiredError*>(&e) != nullptr && argc <= 1) {
+        what = "a command is required: list, run, render or window";
+      }
+      return report(err, what + " (" + hint + ")", exit_usage);
+    }
+
+    if (run->parsed()) {
+      run_command(run_options, out);
+    } else if (render->parsed()) {
+      render_command(render_options, out, err);
+    } else if (window->parsed()) {
+      window_command(window_options, out, err);
+    } else {
+      print_scene_list(out);
+    }
+    out.flush();
+    if (!out) return report(err, "standard output: write failed", exit_failure);
+    return exit_success;
+  } catch (const InputError& e) {
+    return report(err, e.what(), exit_usage);
+  } catch (const Error& e) {  // calder::SceneFileError and other bad input
+    return report(err, e.what(), exit_usage);
+  } catch (const Interrupted& e) {
+    return report(err, e.what(), e.exit_code());
+  } catch (const RunError& e) {
+    return report(err, e.what(), exit_failure);
+  } catch (const std::bad_alloc&) {
+    return report(err, "out of memory", exit_failure);
+  } catch (const std::exception& e) {
+    return report(err, e.what(), exit_failure);
+  }
+}
+
+}  // namespace calder::app

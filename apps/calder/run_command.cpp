@@ -1,0 +1,144 @@
+#include "run_command.hpp"
+
+#include <CLI/CLI.hpp>
+#include <algorithm>
+#include <cctype>
+#include <string>
+
+#include "calder/error.hpp"
+#include "calder/trajectory.hpp"
+#include "calder/world.hpp"
+#include "errors.hpp"
+#include "output_file.hpp"
+#include "summary.hpp"
+#include "trajectory_json.hpp"
+
+namespace calder::app {
+
+namespace {
+
+bool ends_with(const std::string& s, const std::string& suffix) {
+  return s.size() >= suffix.size() &&
+         s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
+}
+
+template <class Writer>
+void write_run(Simulation& simulation, const PreparedInput& input, Writer& writer) {
+  writer.write(0, simulation.world());
+  run_frames(simulation, input.scene.frames, input.source,
+             [&](std::int64_t frame) { writer.write(frame, simulation.world()); });
+}
+
+}  // namespace
+
+CLI::App* add_run_command(CLI::App& app, RunOptions& options) {
+  CLI::App* run = app.add_subcommand(
+      "run", "Run a scene headless; print a summary, or write its trajectory with --trajectory");
+  add_input_options(*run, options.input);
+  CLI::Option* trajectory =
+      run->add_option("--trajectory", options.trajectory,
+                      "Write the trajectory (frame 0 = after setup, then one frame per step) "
+                      "to FILE, '-' for standard output. CSV frame,body,x,y,vx,vy, or JSON. "
+                      "Written to a temporary file renamed on success: never left half written. "
+                      "At most 50000000 rows, (frames + 1) * bodies")
+          ->type_name("FILE");
+  run->add_option("--format", options.format,
+                  "Trajectory format (default: json for a FILE ending in .json, else csv)")
+      ->type_name("csv|json")
+      ->needs(trajectory);
+  run->footer(
+      "Without --trajectory, prints the scene, frames, bodies, dt, seed, kinetic, potential and "
+      "total energy, linear and angular momentum and the state hash.\n"
+      "JSON: {\"scene\", \"frames\", \"bodies\", \"dt\", \"seed\", \"columns\": [\"frame\", "
+      "\"body\", \"x\", \"y\", \"vx\", \"vy\"], \"rows\": [[frame, body, x, y, vx, vy], ...]}.\n"
+      "Numbers are written in the shortest form that reads back to the same double.\n"
+      "Exit status: 0 success, 1 the run failed (e.g. a step produced NaN), 2 bad usage or "
+      "bad input.\n");
+  return run;
+}
+
+TrajectoryFormat trajectory_format(const std::optional<std::string>& format,
+                                   const std::string& path) {
+  if (format) {
+    if (*format == "csv") return TrajectoryFormat::csv;
+    if (*format == "json") return TrajectoryFormat::json;
+    throw InputError("--format: expected csv or json, got '" + *format + "'");
+  }
+  std::string lower = path;
+  std::transform(lower.begin(), lower.end(), lower.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return ends_with(lower, ".json") ? TrajectoryFormat::json : TrajectoryFormat::csv;
+}
+
+void check_trajectory_rows(std::int64_t frames, std::size_t bodies) {
+  // frames <= 10^7 and bodies <= 10^7: the product fits in 64 bits.
+  const auto rows = static_cast<unsigned long long>(frames + 1) * bodies;
+  if (rows > static_cast<unsigned long long>(max_trajectory_rows)) {
+    throw InputError("--trajectory: (frames + 1) * bodies = " + std::to_string(frames + 1) + " * " +
+                     std::to_string(bodies) + " = " + std::to_string(rows) +
+                     " rows, over the limit of " + std::to_string(max_trajectory_rows) +
+                     " rows (use fewer --frames)");
+  }
+}
+
+void run_frames(Simulation& simulation, std::int64_t frames, const std::string& source,
+                const std::function<void(std::int64_t)>& after_step) {
+  while (simulation.frame() < frames) {
+    try {
+      simulation.step();
+    } catch (const Error& e) {
+      throw RunError(source + ": frame " + std::to_string(simulation.frame() + 1) + ": " +
+                     e.what());
+    }
+    if (after_step) after_step(simulation.frame());
+  }
+}
+
+void run_command(const RunOptions& options, std::ostream& out) {
+  if (options.trajectory) (void)trajectory_format(options.format, *options.trajectory);
+  const PreparedInput input = prepare_input(options.input);
+  Simulation simulation = start_simulation(input);
+  const std::int64_t frames = input.scene.frames;
+
+  if (!options.trajectory) {
+    run_frames(simulation, frames, input.source, nullptr);
+    print_summary(out, simulation, input.effective_seed());
+    return;
+  }
+
+  const std::string& path = *options.trajectory;
+  const TrajectoryFormat format = trajectory_format(options.format, path);
+  check_trajectory_rows(frames, simulation.world().body_count());
+  OutputFile file(path);
+  std::ostream& stream = file.is_stdout() ? out : file.stream();
+  if (format == TrajectoryFormat::csv) {
+    TrajectoryWriter writer(stream);
+    write_run(simulation, input, writer);
+  } else {
+    TrajectoryJsonWriter writer(stream, {.scene = simulation.scene().name,
+                                         .frames = frames,
+                                         .bodies = simulation.world().body_count(),
+                                         .dt = simulation.world().dt(),
+                                         .seed = input.effective_seed()});
+    write_run(simulation, input, writer);
+    writer.finish();
+  }
+  if (file.is_stdout()) {
+    out.flush();
+    if (!out) throw RunError("standard output: write failed");
+  }
+  file.commit();
+}
+
+void print_scene_list(std::ostream& out) {
+  const auto& scenes = builtin_scenes();
+  std::size_t width = 0;
+  for (const SceneInfo& s : scenes) width = std::max(width, s.name.size());
+  for (const SceneInfo& s : scenes) {
+    std::string name = s.name;
+    name.resize(width + 2, ' ');
+    out << name << s.description << '\n';
+  }
+}
+
+}  // namespace calder::app

@@ -1,0 +1,139 @@
+#include "run_options.hpp"
+
+#include <CLI/CLI.hpp>
+#include <utility>
+
+#include "calder/error.hpp"
+#include "errors.hpp"
+#include "parse.hpp"
+#include "scene_source.hpp"
+#include "state_csv.hpp"
+
+namespace calder::app {
+
+void add_input_options(CLI::App& command, InputOptions& options) {
+  command
+      .add_option("scene", options.scene,
+                  "A built-in scene (see `calder list`) or a scene file: an argument that "
+                  "names an existing file, ends in .toml or contains a '/' is read as a file")
+      ->required()
+      ->type_name("SCENE|FILE");
+  command
+      .add_option("--frames", options.frames, "Frames to run, 0 to 10000000 (default: the scene's)")
+      ->type_name("N");
+  command.add_option("--dt", options.dt, "Time step, a number > 0 (default: the scene's)")
+      ->type_name("X");
+  command
+      .add_option("--seed", options.seed,
+                  "Random seed, 0 to 4294967295, replacing the scene's (default: the scene's)")
+      ->type_name("S");
+  command
+      .add_option("--state", options.state,
+                  "CSV with the header x,y,vx,vy,mass or x,y,vx,vy,mass,radius and one row per "
+                  "body: replaces the bodies after setup (without radius, each body gets the "
+                  "radius the scene's first body group gives its mass)")
+      ->type_name("FILE");
+  command
+      .add_option("--mouse-pressed", options.mouse_pressed,
+                  "Frames A to B (1-based draw numbers, inclusive) with the mouse held; "
+                  "repeat for more ranges. Given, these REPLACE the scene's scripted presses; "
+                  "'none' clears them")
+      ->type_name("A-B")
+      ->allow_extra_args(false)  // one range per flag: `--mouse-pressed 1-2 SCENE` stays clear
+      ->take_all();
+  command
+      .add_option("--mouse", options.mouse,
+                  "The mouse stays at X,Y for the whole run (replaces the scene's scripted "
+                  "mouse position and moves)")
+      ->type_name("X,Y");
+}
+
+InputFlags parse_input_flags(const InputOptions& options) {
+  InputFlags flags;
+  if (options.frames) flags.frames = parse_frames("--frames", *options.frames);
+  if (options.dt) flags.dt = parse_dt("--dt", *options.dt);
+  if (options.seed) flags.seed = parse_seed("--seed", *options.seed);
+  if (!options.mouse_pressed.empty()) {
+    std::vector<FrameRange> ranges;
+    for (const std::string& text : options.mouse_pressed) {
+      for (const FrameRange& r : parse_frame_range("--mouse-pressed", text)) ranges.push_back(r);
+    }
+    flags.mouse_pressed = std::move(ranges);
+  }
+  if (options.mouse) flags.mouse = parse_point("--mouse", *options.mouse);
+  if (options.state) {
+    if (options.state->empty()) throw InputError("--state: the file name is empty");
+    flags.state_path = *options.state;
+  }
+  return flags;
+}
+
+void apply_input_flags(const InputFlags& flags, Scene& scene) {
+  if (flags.frames) scene.frames = *flags.frames;
+  if (flags.dt) scene.world.dt = *flags.dt;
+  if (flags.mouse_pressed) scene.input.mouse_pressed = *flags.mouse_pressed;
+  if (flags.mouse) {
+    scene.input.mouse = *flags.mouse;
+    scene.input.moves.clear();
+  }
+}
+
+std::vector<BodyDef> bodies_from_state(const std::vector<StateRow>& rows, const Scene& scene) {
+  const BodyGroup* group = scene.bodies.empty() ? nullptr : &scene.bodies.front();
+  std::vector<BodyDef> bodies;
+  bodies.reserve(rows.size());
+  for (const StateRow& row : rows) {
+    BodyDef def;
+    def.position = {row.x, row.y};
+    def.velocity = {row.vx, row.vy};
+    def.mass = row.mass;
+    if (row.radius) {
+      def.radius = *row.radius;
+    } else if (group != nullptr) {
+      def.radius = group->radius.radius_for(row.mass);
+    }
+    if (group != nullptr) {
+      def.friction = group->friction;
+      def.drag_area = group->drag_area;
+    }
+    bodies.push_back(def);
+  }
+  return bodies;
+}
+
+PreparedInput prepare_input(const InputOptions& options) {
+  const InputFlags flags = parse_input_flags(options);
+  PreparedInput input;
+  input.source = options.scene;
+  input.scene = load_scene_argument(options.scene);
+  apply_input_flags(flags, input.scene);
+  input.seed = flags.seed;
+  if (flags.state_path) {
+    const std::vector<StateRow> rows = read_state_csv(*flags.state_path);
+    if (rows.size() > max_bodies) {
+      throw InputError(*flags.state_path + ": more than " + std::to_string(max_bodies) + " bodies");
+    }
+    input.bodies = bodies_from_state(rows, input.scene);
+    input.state_path = flags.state_path;
+  }
+  return input;
+}
+
+Simulation start_simulation(const PreparedInput& input) {
+  std::optional<Simulation> simulation;
+  try {
+    simulation.emplace(input.scene, input.seed);
+  } catch (const Error& e) {
+    throw InputError(input.source + ": " + e.what());
+  }
+  if (input.bodies) {
+    try {
+      simulation->set_bodies(*input.bodies);
+    } catch (const Error& e) {
+      throw InputError(*input.state_path + ": " + e.what());
+    }
+  }
+  return std::move(*simulation);
+}
+
+}  // namespace calder::app

@@ -1,0 +1,93 @@
+// calder command: the input flags shared by the verbs that run a scene
+// (`calder run`, and later `calder render`), and how they change a Scene.
+//
+//   SCENE|FILE              a built-in scene name, or a .toml scene file
+//   --frames N              frames to run, 0..10^7 (default: the scene's)
+//   --dt X                  time step > 0 (default: the scene's)
+//   --seed S                the random seed, 0..2^32-1 (default: the scene's)
+//   --state FILE            CSV x,y,vx,vy,mass[,radius]: replaces the bodies after setup
+//   --mouse-pressed A-B     frames A..B (1-based draw numbers, inclusive) with the
+//                           mouse held; repeatable; replaces the scene's scripted
+//                           presses; "none" clears them
+//   --mouse X,Y             the mouse stays at X,Y for the whole run (replaces the
+//                           scene's scripted mouse position and moves)
+//
+// A verb adds them with add_input_options(), and after parsing turns them into
+// a ready Simulation with prepare_input() and start_simulation().
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "calder/scene.hpp"
+#include "calder/vec2.hpp"
+#include "calder/world.hpp"
+
+namespace CLI {
+class App;
+}
+
+namespace calder::app {
+
+struct StateRow;
+
+// The input flags as typed (unset when not given).
+struct InputOptions {
+  std::string scene;
+  std::optional<std::string> frames;
+  std::optional<std::string> dt;
+  std::optional<std::string> seed;
+  std::optional<std::string> state;
+  std::vector<std::string> mouse_pressed;
+  std::optional<std::string> mouse;
+};
+
+// Adds the SCENE|FILE argument and the input flags to a verb.
+void add_input_options(CLI::App& command, InputOptions& options);
+
+// The input flags, checked and converted.
+struct InputFlags {
+  std::optional<std::int64_t> frames;
+  std::optional<double> dt;
+  std::optional<std::uint32_t> seed;
+  std::optional<std::vector<FrameRange>> mouse_pressed;  // set: replaces the scene's
+  std::optional<Vec2> mouse;
+  std::optional<std::string> state_path;
+};
+
+// Checks and converts the flags (not the scene, not the state file).
+// Throws InputError naming the flag.
+InputFlags parse_input_flags(const InputOptions& options);
+
+// Applies --frames, --dt, --mouse-pressed and --mouse to a scene (--seed goes
+// to the Simulation, --state replaces the bodies after setup).
+void apply_input_flags(const InputFlags& flags, Scene& scene);
+
+// A scene with the flags applied, and what replaces its seed and bodies.
+struct PreparedInput {
+  std::string source;  // the SCENE|FILE argument
+  Scene scene;
+  std::optional<std::uint32_t> seed;
+  std::optional<std::vector<BodyDef>> bodies;  // from --state
+  std::optional<std::string> state_path;
+
+  // The seed the run uses: --seed, or the scene's.
+  [[nodiscard]] std::uint32_t effective_seed() const { return seed ? *seed : scene.world.seed; }
+};
+
+// Loads the scene, applies the flags, reads the --state file. Throws
+// InputError or calder::SceneFileError (bad input: exit 2).
+PreparedInput prepare_input(const InputOptions& options);
+
+// The bodies for --state rows: position, velocity, mass, the radius of the row
+// or else the radius the scene's first body group gives that mass (0 if the
+// scene has no body groups); friction and drag area as that group's.
+std::vector<BodyDef> bodies_from_state(const std::vector<StateRow>& rows, const Scene& scene);
+
+// Builds the world (setup) and, with --state, replaces its bodies. Throws
+// InputError when the scene or the bodies are invalid.
+Simulation start_simulation(const PreparedInput& input);
+
+}  // namespace calder::app

@@ -1,0 +1,180 @@
+// calder::nbody: fast mutual attraction (the n-body problem) over contiguous
+// arrays, for worlds with thousands to millions of bodies.
+//
+// Everything here reads bodies as separate arrays (x, y, mass: the World's own
+// layout) and ADDS the accelerations
+//
+//     a_i += sum_{j != i} F(i, j) / m_i  =  G sum_{j != i} m_j (p_j - p_i) w(|p_j - p_i|)
+//
+// to (ax, ay), for one of the laws of calder/forces.hpp:
+//
+//     Law::plummer                 |F| = G m_i m_j r / (r^2 + eps^2)^(3/2)
+//     Law::clamp_distance          |F| = G m_i m_j / d^2,  d = clamp(r, min, max)  (the book)
+//     Law::clamp_squared_distance  |F| = G m_i m_j / q,    q = clamp(r^2, min, max) (ex. 2.16)
+//
+// A body exerts no force on itself, nor on a body at exactly the same place
+// (no direction), as calder::attraction does; with Plummer softening eps > 0
+// that force is zero anyway.
+//
+// Three ways to sum:
+//   - reference_accelerations: plain double loops, the specification;
+//   - direct_accelerations: the same O(n^2) sum, vectorised (AVX-512, AVX2 +
+//     FMA or SSE2, chosen at run time among those compiled in) and threaded
+//     (OpenMP), in float64 or float32;
+//   - barnes_hut_accelerations / BarnesHut: O(n log n), approximate, on a
+//     quadtree.
+//
+// Determinism: each body's sum is computed by one thread, over its sources in
+// a fixed order, so results are bit-identical for any number of threads. They
+// differ in the last bits between kernel instruction sets (kernel_name()) and
+// from the reference (fused multiply-adds, reciprocal square root estimates
+// refined by Newton steps): these kernels are for physics, not for
+// reproducing p5.js sketches bit for bit, which is the core's job.
+//
+// Bad input (arrays of different sizes, a non-finite position, a mass that is
+// not finite and > 0, a bad option) throws calder::Error and leaves ax, ay
+// unchanged. ax and ay must not overlap x, y or mass.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <span>
+
+#include "calder/forces.hpp"
+#include "calder/vec2.hpp"
+
+namespace calder::nbody {
+
+enum class Precision {
+  // Pair sums in float32: positions relative to the centre of the bodies'
+  // bounding box as two floats (hi + lo, so that close pairs in a wide
+  // system keep their separation to float's precision), lengths and masses
+  // scaled by powers of two into float's range; each body's sum accumulated
+  // in float over tiles of 512 sources and in double across tiles. Relative
+  // error of an acceleration against the float64 sum, measured on disks and
+  // clumps of 10^3 to 1.6 10^4 bodies: RMS 6e-8 to 9e-7, maximum < 6e-5 (at
+  // bodies whose acceleration is a small sum of large, cancelling pulls).
+  // Barnes-Hut in float32: plain floats relative to each group's centre.
+  float32,
+  // Pair sums in double: relative error ~1e-15 (RMS) against the reference.
+  float64,
+};
+
+enum class Law { plummer, clamp_distance, clamp_squared_distance };
+
+struct Options {
+  double G = 1.0;
+  Law law = Law::plummer;
+  double softening = 0.0;      // Plummer epsilon (Law::plummer), >= 0
+  double min_distance = 5.0;   // clamp bounds (the clamped laws): 0 < min <= max; for
+  double max_distance = 25.0;  // clamp_squared_distance they bound the squared distance
+  Precision precision = Precision::float64;
+  // 0: OpenMP's default (all cores); n > 0: n threads. Small problems (direct
+  // sums under 320 bodies, trees under 2000) run on one thread.
+  int threads = 0;
+};
+
+// The options for a calder::AttractionLaw (its G, clamp, bounds, softening).
+// Throws calder::Error for a custom law, which has no fast kernel.
+Options options_for(const AttractionLaw& law);
+
+// O(n^2) direct summation, vectorised and threaded: (ax, ay) += accelerations.
+void direct_accelerations(std::span<const double> x, std::span<const double> y,
+                          std::span<const double> mass, std::span<double> ax, std::span<double> ay,
+                          const Options& options = {});
+
+// The specification: plain loops in double, one pair at a time, sources in
+// index order (options.precision and options.threads are ignored).
+void reference_accelerations(std::span<const double> x, std::span<const double> y,
+                             std::span<const double> mass, std::span<double> ax,
+                             std::span<double> ay, const Options& options = {});
+// The reference acceleration of body `target` alone (O(n)), e.g. to check a
+// sample of bodies of a large system.
+Vec2 reference_acceleration(std::span<const double> x, std::span<const double> y,
+                            std::span<const double> mass, std::size_t target,
+                            const Options& options = {});
+
+// --- Barnes-Hut -----------------------------------------------------------------
+
+struct BarnesHutOptions : Options {
+  // Opening angle: a node of side s whose centre of mass lies at distance d
+  // from a group of bodies (d measured from the group's bounding box) acts on
+  // all of them through its multipole expansion when s / (d - delta) < theta,
+  // delta being the distance from the node's centre of mass to its cell's
+  // centre (Barnes' modified criterion: a node holding a target is always
+  // opened). Smaller is more accurate and slower; 0 is the direct sum. In
+  // [0, 1]. RMS relative error at 0.5, measured: ~4e-4 (uniform disk), ~1e-4
+  // (clustered), falling as theta^4.
+  double theta = 0.5;
+  int leaf_size = 16;    // a node with at most this many bodies is not split
+  int group_size = 128;  // bodies of a node with at most this many share one tree walk
+};
+
+struct BarnesHutStats {
+  std::size_t bodies = 0;
+  std::size_t nodes = 0;
+  std::size_t leaves = 0;
+  std::size_t groups = 0;
+  int depth = 0;                        // of the deepest node (root: 0)
+  std::uint64_t interactions = 0;       // target-source pairs evaluated (nodes and bodies)
+  std::uint64_t node_interactions = 0;  // of which with nodes (multipole expansions)
+  double build_seconds = 0.0;           // bounding box, Morton sort, tree, moments
+  double walk_seconds = 0.0;            // tree walks and pair sums
+};
+
+// A Barnes-Hut solver that keeps its tree and buffers between calls (the
+// allocation-free way to evaluate accelerations every step).
+//
+// Build: bounding square; Morton codes (2 x 24 bits); a stable LSD radix sort
+// (ties in index order; threads sort their own slices, so the order does not
+// depend on their number); a quadtree of the sorted order, each node the
+// smallest cell holding its bodies, split until it has at most leaf_size
+// bodies (or all share one code: coincident bodies); per node mass, centre of
+// mass and second and third moments. Walk: for each group of <= group_size
+// bodies, one walk from the root collects the accepted nodes and the bodies
+// of opened leaves; the kernels sum the nodes' multipole expansions to third
+// order (Plummer law; monopoles for the clamped laws, which are not harmonic)
+// and the bodies' direct pulls for the whole group, float32 lists relative
+// to the group's centre. Groups are handed to threads dynamically; each
+// body's sum is still computed by one thread in a fixed order, so results do
+// not depend on the thread count.
+class BarnesHut {
+ public:
+  BarnesHut();
+  ~BarnesHut();
+  BarnesHut(BarnesHut&&) noexcept;
+  BarnesHut& operator=(BarnesHut&&) noexcept;
+  BarnesHut(const BarnesHut&) = delete;
+  BarnesHut& operator=(const BarnesHut&) = delete;
+
+  // (ax, ay) += approximate accelerations.
+  void accelerations(std::span<const double> x, std::span<const double> y,
+                     std::span<const double> mass, std::span<double> ax, std::span<double> ay,
+                     const BarnesHutOptions& options = {});
+
+  // About the last call.
+  const BarnesHutStats& stats() const;
+
+ private:
+  struct Workspace;
+  std::unique_ptr<Workspace> workspace_;
+};
+
+// One-off Barnes-Hut evaluation (allocates a BarnesHut for the call).
+void barnes_hut_accelerations(std::span<const double> x, std::span<const double> y,
+                              std::span<const double> mass, std::span<double> ax,
+                              std::span<double> ay, const BarnesHutOptions& options = {},
+                              BarnesHutStats* stats = nullptr);
+
+// --- about the build --------------------------------------------------------------
+
+// The instruction set of the kernels in use: "avx512", "avx2+fma", "sse2",
+// "generic". A build with CALDER_PORTABLE=ON holds several and picks the
+// best the CPU supports (the environment variable CALDER_NBODY_KERNELS=
+// avx512|avx2|baseline, read once, lowers the choice, for benchmarks).
+const char* kernel_name();
+// The number of threads that threads = 0 means (1 without OpenMP).
+int max_threads();
+
+}  // namespace calder::nbody

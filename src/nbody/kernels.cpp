@@ -1,0 +1,499 @@
+// calder::nbody: the pair-sum kernels (see kernels.hpp).
+//
+// This file is compiled once per instruction-set variant (CMakeLists.txt,
+// calder_nbody): CALDER_NBODY_VARIANT names the variant and the function
+// kernel_table_<variant>() that dispatch.cpp calls. It is the only code of
+// calder built with -O3, -march=... and -ffp-contract=fast (fused multiply-
+// adds): none of the book-fidelity code goes through it.
+//
+// Vectorisation is explicit, with GCC/Clang vector extensions: a block of
+// R vectors of targets stays in registers while the sources stream past, one
+// broadcast source at a time. Each target's sum runs over the sources in
+// source order, in its own lane, so the result for a target does not depend
+// on which block, lane or thread computes it. The only intrinsics are the
+// reciprocal square root estimates (vrsqrtps, vrsqrt14ps/pd), which have no
+// portable spelling; the sqrt and the division of the other paths are plain
+// per-lane code that the compiler turns into vsqrtp*/vdivp*.
+#include <cstddef>
+#include <cstring>
+#include <type_traits>
+
+#include "kernels.hpp"
+
+#if defined(__SSE__) || defined(__AVX__)
+#include <immintrin.h>
+#endif
+
+#ifndef CALDER_NBODY_VARIANT
+#error "CALDER_NBODY_VARIANT must name the variant (set by CMakeLists.txt)"
+#endif
+
+#define CALDER_NBODY_CAT2(a, b) a##b
+#define CALDER_NBODY_CAT(a, b) CALDER_NBODY_CAT2(a, b)
+
+namespace calder::nbody::detail {
+namespace {
+
+#if defined(__AVX512F__)
+constexpr std::size_t kVectorBytes = 64;
+// Targets per register block: R vectors (R = 1, 2 and 4 measure within 5%
+// of each other; 4 uses the 32 zmm registers best).
+constexpr std::size_t kBlockVectors64 = 4;
+constexpr std::size_t kBlockVectors32 = 4;
+constexpr const char* kName = "avx512";
+#elif defined(__AVX__)
+constexpr std::size_t kVectorBytes = 32;
+constexpr std::size_t kBlockVectors64 = 2;  // 16 ymm registers
+constexpr std::size_t kBlockVectors32 = 2;
+#if defined(__FMA__)
+constexpr const char* kName = "avx2+fma";
+#else
+constexpr const char* kName = "avx";
+#endif
+#elif defined(__SSE2__)
+constexpr std::size_t kVectorBytes = 16;
+constexpr std::size_t kBlockVectors64 = 4;
+constexpr std::size_t kBlockVectors32 = 2;
+constexpr const char* kName = "sse2";
+#else
+constexpr std::size_t kVectorBytes = 16;
+constexpr std::size_t kBlockVectors64 = 2;
+constexpr std::size_t kBlockVectors32 = 2;
+constexpr const char* kName = "generic";
+#endif
+
+using VD = double __attribute__((vector_size(kVectorBytes)));
+using VF = float __attribute__((vector_size(kVectorBytes)));
+// As many doubles as VF has floats: the float32 kernel's tile sums.
+using VD2 = double __attribute__((vector_size(2 * kVectorBytes)));
+
+template <typename V>
+struct Scalar;
+// Integer vectors of the same shapes (lane indices for __builtin_shuffle).
+using VDI = long long __attribute__((vector_size(kVectorBytes)));
+using VFI = int __attribute__((vector_size(kVectorBytes)));
+template <>
+struct Scalar<VD> {
+  using type = double;
+  using index = VDI;
+};
+template <>
+struct Scalar<VF> {
+  using type = float;
+  using index = VFI;
+};
+
+// Pairs closer than this (r^2 below the smallest normal number) count as
+// coincident where the kernels mask (see kernels.hpp).
+template <typename V>
+constexpr typename Scalar<V>::type kTiny = __FLT_MIN__;
+template <>
+constexpr double kTiny<VD> = __DBL_MIN__;
+
+template <typename V>
+constexpr std::size_t kLanes = sizeof(V) / sizeof(typename Scalar<V>::type);
+
+// Every lane s: a broadcast (vbroadcastss/sd, from memory where s is), not
+// V{} + s, which costs an addition (0 + s is not s for s = -0).
+template <typename V>
+[[gnu::always_inline]] inline V splat(typename Scalar<V>::type s) {
+#if defined(__clang__)
+  V v;
+  for (std::size_t k = 0; k < sizeof(V) / sizeof(s); ++k) v[k] = s;
+  return v;
+#else
+  const V v = {s};
+  return __builtin_shuffle(v, typename Scalar<V>::index{});
+#endif
+}
+
+template <typename V>
+[[gnu::always_inline]] inline V load(const typename Scalar<V>::type* p) {
+  V v;
+  std::memcpy(&v, p, sizeof v);
+  return v;
+}
+
+// Lane by lane; GCC turns the loop into one vsqrtp* (with -fno-math-errno).
+template <typename V>
+[[gnu::always_inline]] inline V vsqrt(V v) {
+  V r;
+  for (std::size_t k = 0; k < kLanes<V>; ++k) {
+    if constexpr (sizeof(typename Scalar<V>::type) == 4) {
+      r[k] = __builtin_sqrtf(v[k]);
+    } else {
+      r[k] = __builtin_sqrt(v[k]);
+    }
+  }
+  return r;
+}
+
+// Reciprocal square root estimates and how many Newton steps bring them to
+// the type's precision; kSteps == 0: no estimate, use 1 / sqrt.
+#if defined(__AVX512F__)
+// (The zero-masking forms with a full mask: GCC 12 warns, wrongly, that the
+// plain ones read an uninitialised register.)
+[[gnu::always_inline]] inline VF rsqrt_estimate(VF v) {
+  return _mm512_maskz_rsqrt14_ps(0xFFFF, v);  // relative error < 2^-14
+}
+[[gnu::always_inline]] inline VD rsqrt_estimate(VD v) { return _mm512_maskz_rsqrt14_pd(0xFF, v); }
+template <typename V>
+constexpr int kNewtonSteps = sizeof(typename Scalar<V>::type) == 4 ? 1 : 2;
+#elif defined(__AVX__)
+[[gnu::always_inline]] inline VF rsqrt_estimate(VF v) { return _mm256_rsqrt_ps(v); }  // 1.5*2^-12
+[[gnu::always_inline]] inline VD rsqrt_estimate(VD v) { return v; }                   // unused
+template <typename V>
+constexpr int kNewtonSteps = sizeof(typename Scalar<V>::type) == 4 ? 1 : 0;
+#elif defined(__SSE2__)
+[[gnu::always_inline]] inline VF rsqrt_estimate(VF v) { return _mm_rsqrt_ps(v); }
+[[gnu::always_inline]] inline VD rsqrt_estimate(VD v) { return v; }  // unused
+template <typename V>
+constexpr int kNewtonSteps = sizeof(typename Scalar<V>::type) == 4 ? 1 : 0;
+#else
+template <typename V>
+[[gnu::always_inline]] inline V rsqrt_estimate(V v) {
+  return v;  // unused
+}
+template <typename V>
+constexpr int kNewtonSteps = 0;
+#endif
+
+// 1 / sqrt(r2) for r2 > 0, to the type's precision. With kNewtonSteps > 0 the
+// result is (approximately) `scale` / sqrt(r2) with scale = 2^(kNewtonSteps'
+// last step): the last Newton step y (3 - r2 y^2) leaves out its factor 1/2,
+// which the caller folds into a constant (see kLastStepScale).
+template <typename V>
+constexpr typename Scalar<V>::type kLastStepScale = kNewtonSteps<V> > 0 ? 2 : 1;
+
+template <typename V>
+[[gnu::always_inline]] inline V rsqrt_scaled(V r2) {
+  using T = typename Scalar<V>::type;
+  if constexpr (kNewtonSteps<V> == 0) {
+    return splat<V>(T(1)) / vsqrt(r2);
+  } else {
+    V y = rsqrt_estimate(r2);
+    const V half_r2 = r2 * T(0.5);
+    for (int step = 1; step < kNewtonSteps<V>; ++step) {
+      y = y * (T(1.5) - half_r2 * (y * y));  // y (3/2 - r2 y^2 / 2)
+    }
+    return y * (T(3) - r2 * (y * y));  // 2 / sqrt(r2)
+  }
+}
+
+// The law's weight times the source mass, for one vector of pairs: returns
+// m w(r) with r^2 = dx^2 + dy^2 (see kernels.hpp). Masked: zero where
+// r^2 < kTiny (the same place, to the type's precision).
+template <Law kLaw, bool kMasked, typename V>
+[[gnu::always_inline]] inline V weight(V dx, V dy, V m, V eps2, V lo, V hi) {
+  using T = typename Scalar<V>::type;
+  V w;
+  if constexpr (kLaw == Law::plummer) {
+    V r2 = dx * dx + eps2;
+    r2 = dy * dy + r2;
+    if constexpr (kNewtonSteps<V> == 0) {
+      w = m / (r2 * vsqrt(r2));
+    } else {
+      const V y = rsqrt_scaled(r2);  // 2 / r
+      constexpr T k = T(1) / (kLastStepScale<V> * kLastStepScale<V> * kLastStepScale<V>);
+      w = (m * k) * y * (y * y);
+    }
+    if constexpr (kMasked) w = r2 >= kTiny<V> ? w : V{};
+  } else {
+    const V r2 = dx * dx + dy * dy;
+    V r;
+    V inv_r;  // 1 / r (with the estimate)
+    if constexpr (kNewtonSteps<V> == 0) {
+      r = vsqrt(r2);
+    } else {
+      inv_r = rsqrt_scaled(r2) * (T(1) / kLastStepScale<V>);
+      r = r2 * inv_r;
+    }
+    if constexpr (kLaw == Law::clamp_distance) {
+      V d = r < lo ? lo : r;
+      d = d > hi ? hi : d;
+      if constexpr (kNewtonSteps<V> == 0) {
+        w = m / (r * (d * d));
+      } else {
+        w = m * inv_r / (d * d);
+      }
+    } else {
+      V q = r2 < lo ? lo : r2;
+      q = q > hi ? hi : q;
+      if constexpr (kNewtonSteps<V> == 0) {
+        w = m / (r * q);
+      } else {
+        w = m * inv_r / q;
+      }
+    }
+    w = r2 >= kTiny<V> ? w : V{};  // always masked: r == 0 has no direction
+  }
+  return w;
+}
+
+// Sources, one broadcast at a time: point masses under a law; kSplit:
+// two-float positions (see Bodies).
+template <typename V, Law kLaw, bool kMasked, bool kSplit>
+struct PointSources {
+  using T = typename Scalar<V>::type;
+  static constexpr bool kTwoFloat = kSplit;
+  struct Source {
+    V x, y, m, x_lo, y_lo;
+  };
+  const Bodies<T>& s;
+  V eps2, lo, hi;
+
+  std::size_t size() const { return s.n; }
+  [[gnu::always_inline]] Source at(std::size_t j) const {
+    if constexpr (kSplit) {
+      return {splat<V>(s.x[j]), splat<V>(s.y[j]), splat<V>(s.m[j]), splat<V>(s.x_lo[j]),
+              splat<V>(s.y_lo[j])};
+    } else {
+      return {splat<V>(s.x[j]), splat<V>(s.y[j]), splat<V>(s.m[j]), V{}, V{}};
+    }
+  }
+  [[gnu::always_inline]] void add(const Source& src, V xi, V yi, V xi_lo, V yi_lo, V& ax,
+                                  V& ay) const {
+    V dx = src.x - xi;
+    V dy = src.y - yi;
+    if constexpr (kSplit) {
+      dx = dx + (src.x_lo - xi_lo);
+      dy = dy + (src.y_lo - yi_lo);
+    }
+    const V w = weight<kLaw, kMasked>(dx, dy, src.m, eps2, lo, hi);
+    ax = w * dx + ax;
+    ay = w * dy + ay;
+  }
+};
+
+// Sources: tree nodes with their moments (Plummer law; see kernels.hpp).
+template <typename V>
+struct MultipoleSources {
+  using T = typename Scalar<V>::type;
+  static constexpr bool kTwoFloat = false;
+  static constexpr std::size_t K = Nodes<T>::kColumns;
+  struct Source {
+    V c[K];
+  };
+  const Nodes<T>& s;
+  V eps2;
+
+  std::size_t size() const { return s.n; }
+  [[gnu::always_inline]] Source at(std::size_t j) const {
+    Source src;
+    for (std::size_t k = 0; k < K; ++k) src.c[k] = splat<V>(s.column[k][j]);
+    return src;
+  }
+  [[gnu::always_inline]] void add(const Source& n, V xi, V yi, V, V, V& ax, V& ay) const {
+    const V& m = n.c[2];
+    const V& q3xx = n.c[3];
+    const V& q3xy = n.c[4];
+    const V& q3yy = n.c[5];
+    const V& t15 = n.c[6];
+    const V& o_xxx = n.c[7];
+    const V& o_xxy = n.c[8];
+    const V& o_xyy = n.c[9];
+    const V& o_yyy = n.c[10];
+    const V& p_x = n.c[11];
+    const V& p_y = n.c[12];
+    const V dx = n.c[0] - xi;
+    const V dy = n.c[1] - yi;
+    V r2 = dx * dx + eps2;
+    r2 = dy * dy + r2;
+    V y = rsqrt_scaled(r2);
+    if constexpr (kNewtonSteps < V >> 0) y = y * T(0.5);
+    const V y2 = y * y;
+    const V y3 = y * y2;
+    const V y5 = y3 * y2;
+    const V y7 = y5 * y2;
+    const V qx = q3xx * dx + (q3xy * dy + p_x);  // 3 Q d + 1.5 P
+    const V qy = q3xy * dx + (q3yy * dy + p_y);
+    const V pd = p_x * dx + p_y * dy;  // 1.5 P.d
+    const V dqd = dx * qx + dy * qy;   // 3 d.Q d + 1.5 P.d
+    const V xx = dx * dx;
+    const V yy = dy * dy;
+    const V xy2 = (dx + dx) * dy;
+    const V vx = o_xxx * xx + (o_xxy * xy2 + o_xyy * yy);  // 7.5 O(d,d,.)
+    const V vy = o_xxy * xx + (o_xyy * xy2 + o_yyy * yy);
+    const V w = dx * vx + dy * vy;  // 7.5 O(d,d,d)
+    const V c = m * y3 - t15 * y5 + y7 * (T(2.5) * (dqd + pd) - (T(7.0 / 3.0) * y2) * w);
+    ax = c * dx + ax;
+    ay = c * dy + ay;
+    ax = y7 * vx - y5 * qx + ax;
+    ay = y7 * vy - y5 * qy + ay;
+  }
+};
+
+// Copies targets [first, first + B) into a full block, padding a short tail
+// block with the block's first target (the padded lanes are discarded).
+template <typename T, std::size_t B>
+const T* block_of(const T* p, std::size_t first, std::size_t n, T (&buffer)[B]) {
+  if (n - first >= B) return p + first;
+  const std::size_t count = n - first;
+  for (std::size_t k = 0; k < B; ++k) buffer[k] = p[first + (k < count ? k : 0)];
+  return buffer;
+}
+
+// Blocks of R vectors of targets against all sources: each lane sums its
+// target's pairs in source order. float64: one sum per lane. float32: float
+// sums over tiles of kFloatTile sources, added in double. (tx_lo, ty_lo):
+// the targets' low parts when Sources::kTwoFloat.
+template <typename V, std::size_t R, typename Sources>
+void run_blocks(const typename Scalar<V>::type* tx, const typename Scalar<V>::type* ty,
+                const typename Scalar<V>::type* tx_lo, const typename Scalar<V>::type* ty_lo,
+                std::size_t nt, const Sources& sources, double* out_x, double* out_y) {
+  using T = typename Scalar<V>::type;
+  constexpr std::size_t L = kLanes<V>;
+  constexpr std::size_t B = R * L;
+  constexpr bool kFloat = sizeof(T) == 4;
+  using Sum = std::conditional_t<kFloat, VD2, VD>;
+  const std::size_t ns = sources.size();
+  const std::size_t tile = kFloat ? kFloatTile : (ns > 0 ? ns : 1);
+  for (std::size_t i0 = 0; i0 < nt; i0 += B) {
+    T bx[B];
+    T by[B];
+    T bx_lo[B];
+    T by_lo[B];
+    const T* px = block_of(tx, i0, nt, bx);
+    const T* py = block_of(ty, i0, nt, by);
+    const T* px_lo = Sources::kTwoFloat ? block_of(tx_lo, i0, nt, bx_lo) : nullptr;
+    const T* py_lo = Sources::kTwoFloat ? block_of(ty_lo, i0, nt, by_lo) : nullptr;
+    V xi[R];
+    V yi[R];
+    V xi_lo[R];
+    V yi_lo[R];
+    Sum sx[R];
+    Sum sy[R];
+    for (std::size_t r = 0; r < R; ++r) {
+      xi[r] = load<V>(px + r * L);
+      yi[r] = load<V>(py + r * L);
+      xi_lo[r] = Sources::kTwoFloat ? load<V>(px_lo + r * L) : V{};
+      yi_lo[r] = Sources::kTwoFloat ? load<V>(py_lo + r * L) : V{};
+      sx[r] = Sum{};
+      sy[r] = Sum{};
+    }
+    for (std::size_t j0 = 0; j0 < ns; j0 += tile) {
+      const std::size_t j1 = ns - j0 < tile ? ns : j0 + tile;
+      V ax[R];
+      V ay[R];
+      for (std::size_t r = 0; r < R; ++r) {
+        ax[r] = V{};
+        ay[r] = V{};
+      }
+      for (std::size_t j = j0; j < j1; ++j) {
+        const auto src = sources.at(j);
+        for (std::size_t r = 0; r < R; ++r) {
+          sources.add(src, xi[r], yi[r], xi_lo[r], yi_lo[r], ax[r], ay[r]);
+        }
+      }
+      for (std::size_t r = 0; r < R; ++r) {
+        if constexpr (kFloat) {
+          sx[r] += __builtin_convertvector(ax[r], VD2);
+          sy[r] += __builtin_convertvector(ay[r], VD2);
+        } else {
+          sx[r] += ax[r];
+          sy[r] += ay[r];
+        }
+      }
+    }
+    const std::size_t count = nt - i0 < B ? nt - i0 : B;
+    for (std::size_t k = 0; k < count; ++k) {
+      out_x[i0 + k] += sx[k / L][k % L];
+      out_y[i0 + k] += sy[k / L][k % L];
+    }
+  }
+}
+
+template <typename T>
+struct VectorOf;
+template <>
+struct VectorOf<double> {
+  using type = VD;
+};
+template <>
+struct VectorOf<float> {
+  using type = VF;
+};
+
+template <typename T>
+T eps2_of(const LawParams& p) {
+  if constexpr (sizeof(T) == 4) {
+    return p.eps2_f;
+  } else {
+    return p.eps2;
+  }
+}
+
+// Point sources under the law of p, R vectors of targets per block.
+template <typename V, std::size_t R, bool kSplit>
+void accumulate_law(const typename Scalar<V>::type* tx, const typename Scalar<V>::type* ty,
+                    const typename Scalar<V>::type* tx_lo, const typename Scalar<V>::type* ty_lo,
+                    std::size_t nt, const Bodies<typename Scalar<V>::type>& s, const LawParams& p,
+                    double* out_x, double* out_y) {
+  using T = typename Scalar<V>::type;
+  const T eps2 = eps2_of<T>(p);
+  const V lo = splat<V>(sizeof(T) == 4 ? T(p.lo_f) : T(p.lo));
+  const V hi = splat<V>(sizeof(T) == 4 ? T(p.hi_f) : T(p.hi));
+  const V e = splat<V>(eps2);
+  const auto run = [&](const auto& sources) {
+    run_blocks<V, R>(tx, ty, tx_lo, ty_lo, nt, sources, out_x, out_y);
+  };
+  switch (p.law) {
+    case Law::plummer:
+      if (eps2 >= kTiny<V>) {
+        run(PointSources<V, Law::plummer, false, kSplit>{s, e, lo, hi});
+      } else {
+        run(PointSources<V, Law::plummer, true, kSplit>{s, e, lo, hi});
+      }
+      break;
+    case Law::clamp_distance:
+      run(PointSources<V, Law::clamp_distance, true, kSplit>{s, e, lo, hi});
+      break;
+    case Law::clamp_squared_distance:
+      run(PointSources<V, Law::clamp_squared_distance, true, kSplit>{s, e, lo, hi});
+      break;
+  }
+}
+
+template <std::size_t R>
+void accumulate64(const double* tx, const double* ty, std::size_t nt, const Bodies<double>& s,
+                  const LawParams& p, double* out_x, double* out_y) {
+  accumulate_law<VD, R, false>(tx, ty, nullptr, nullptr, nt, s, p, out_x, out_y);
+}
+
+template <std::size_t R>
+void accumulate32(const float* tx, const float* ty, const float* tx_lo, const float* ty_lo,
+                  std::size_t nt, const Bodies<float>& s, const LawParams& p, double* out_x,
+                  double* out_y) {
+  if (tx_lo != nullptr && ty_lo != nullptr && s.x_lo != nullptr && s.y_lo != nullptr) {
+    accumulate_law<VF, R, true>(tx, ty, tx_lo, ty_lo, nt, s, p, out_x, out_y);
+  } else {
+    accumulate_law<VF, R, false>(tx, ty, nullptr, nullptr, nt, s, p, out_x, out_y);
+  }
+}
+
+template <typename T>
+void accumulate_multipole(const T* tx, const T* ty, std::size_t nt, const Nodes<T>& s,
+                          const LawParams& p, double* out_x, double* out_y) {
+  using V = typename VectorOf<T>::type;
+  run_blocks<V, 1>(tx, ty, nullptr, nullptr, nt, MultipoleSources<V>{s, splat<V>(eps2_of<T>(p))},
+                   out_x, out_y);
+}
+
+}  // namespace
+
+const KernelTable& CALDER_NBODY_CAT(kernel_table_, CALDER_NBODY_VARIANT)() {
+  static const KernelTable table{kName,
+                                 kBlockVectors64 * kLanes<VD>,
+                                 kBlockVectors32 * kLanes<VF>,
+                                 accumulate64<kBlockVectors64>,
+                                 accumulate32<kBlockVectors32>,
+                                 kLanes<VD>,
+                                 kLanes<VF>,
+                                 accumulate64<1>,
+                                 accumulate32<1>,
+                                 accumulate_multipole<double>,
+                                 accumulate_multipole<float>};
+  return table;
+}
+
+}  // namespace calder::nbody::detail

@@ -1,0 +1,111 @@
+// calder::nbody internals: the pair-sum kernels, compiled once per instruction
+// set (src/nbody/kernels.cpp) and chosen at run time (dispatch.cpp).
+//
+// A kernel adds, for each target t of a contiguous block, the sum over the
+// sources s (in source order, always the same for a given target)
+//
+//     sum_s  m_s (p_s - p_t) w(|p_s - p_t|)
+//
+// to (out_x[t], out_y[t]), where w is the law's weight without G:
+//
+//     plummer                 w = 1 / (r^2 + eps^2)^(3/2)
+//     clamp_distance          w = 1 / (r d^2),  d = clamp(r, lo, hi)
+//     clamp_squared_distance  w = 1 / (r q),    q = clamp(r^2, lo, hi)
+//
+// and w = 0 where p_s == p_t (a body on itself, coincident bodies) for the
+// clamped laws and for plummer with eps = 0.
+#pragma once
+
+#include <cstddef>
+
+#include "calder/nbody.hpp"
+
+namespace calder::nbody::detail {
+
+// The law's parameters in both precisions (float ones already scaled to the
+// float32 kernel's units by the caller).
+struct LawParams {
+  Law law = Law::plummer;
+  double eps2 = 0.0;  // softening^2 (plummer)
+  double lo = 0.0;    // clamp bounds: distance, or squared distance
+  double hi = 0.0;
+  float eps2_f = 0.0f;
+  float lo_f = 0.0f;
+  float hi_f = 0.0f;
+};
+
+template <typename T>
+struct Bodies {
+  const T* x = nullptr;
+  const T* y = nullptr;
+  const T* m = nullptr;
+  std::size_t n = 0;
+  // float32 only, optional: the low parts of two-float positions (x + x_lo
+  // is the position to ~2^-48 relative). With them the kernel forms each
+  // difference as (x_j - x_i) + (x_lo_j - x_lo_i): exact to float's
+  // precision however close the pair, the hi difference being exact for
+  // close pairs (Sterbenz) and the low parts supplying the bits float lost.
+  const T* x_lo = nullptr;
+  const T* y_lo = nullptr;
+};
+
+// Tree nodes as sources for the multipole kernels: centre of mass, mass and,
+// pre-multiplied, the moments about the centre of mass (s = body - centre):
+//   q3xx, q3xy, q3yy = 3 Q,  Q = sum m s s^T          (second moments)
+//   t15 = 1.5 tr Q
+//   o_xxx, o_xxy, o_xyy, o_yyy = 7.5 O,  O = sum m s s s  (third moments)
+//   p_x, p_y = 1.5 P,  P = sum m s |s|^2
+template <typename T>
+struct Nodes {
+  static constexpr std::size_t kColumns = 13;
+  // x, y, m, q3xx, q3xy, q3yy, t15, o_xxx, o_xxy, o_xyy, o_yyy, p_x, p_y
+  const T* column[kColumns] = {};
+  std::size_t n = 0;
+};
+
+// Targets (tx, ty)[0, nt) against all sources; sums added to out_x, out_y.
+using Accumulate64 = void (*)(const double* tx, const double* ty, std::size_t nt,
+                              const Bodies<double>& sources, const LawParams& law, double* out_x,
+                              double* out_y);
+// The same in float32: each target's sum is accumulated in float over tiles
+// of kFloatTile consecutive sources, and the tile sums in double. Two-float
+// positions when the targets' (tx_lo, ty_lo) and the sources' low parts are
+// given (all four), plain floats otherwise.
+using Accumulate32 = void (*)(const float* tx, const float* ty, const float* tx_lo,
+                              const float* ty_lo, std::size_t nt, const Bodies<float>& sources,
+                              const LawParams& law, double* out_x, double* out_y);
+
+// The multipole expansion of each node's Plummer-softened field (always
+// Law::plummer) to third order, with d = node - target, R^2 = |d|^2 + eps^2:
+//     m d/R^3                                                    (monopole)
+//   - 3 Q d/R^5 + (15/2)(d.Q d) d/R^7 - (3/2) tr(Q) d/R^5      (quadrupole)
+//   + (15/2) O(d,d,.)/R^7 - (35/2) O(d,d,d) d/R^9
+//   - (3/2) P/R^5 + (15/2)(P.d) d/R^7                           (octupole)
+using AccumulateMultipole64 = void (*)(const double* tx, const double* ty, std::size_t nt,
+                                       const Nodes<double>& nodes, const LawParams& law,
+                                       double* out_x, double* out_y);
+using AccumulateMultipole32 = void (*)(const float* tx, const float* ty, std::size_t nt,
+                                       const Nodes<float>& nodes, const LawParams& law,
+                                       double* out_x, double* out_y);
+
+inline constexpr std::size_t kFloatTile = 512;
+
+struct KernelTable {
+  const char* name;           // e.g. "avx512", "avx2+fma", "sse2", "generic"
+  std::size_t block64;        // targets per register block of the direct kernels, float64
+  std::size_t block32;        // and float32
+  Accumulate64 accumulate64;  // wide register blocks (direct summation)
+  Accumulate32 accumulate32;
+  std::size_t group_block64;  // one vector of targets (Barnes-Hut groups)
+  std::size_t group_block32;
+  Accumulate64 group64;
+  Accumulate32 group32;
+  AccumulateMultipole64 multipole64;
+  AccumulateMultipole32 multipole32;
+};
+
+// The kernels for the instruction set the running CPU supports best among
+// those compiled in; chosen once.
+const KernelTable& kernels();
+
+}  // namespace calder::nbody::detail

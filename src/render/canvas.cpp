@@ -1,0 +1,544 @@
+// calder render: drawing a world into a Cairo image, and PNG output.
+#include <cairo.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstring>
+#include <deque>
+#include <span>
+#include <string>
+#include <variant>
+#include <vector>
+
+#include "calder/diagnostics.hpp"
+#include "calder/error.hpp"
+#include "calder/fields.hpp"
+#include "calder/render.hpp"
+#include "output_file.hpp"
+
+namespace calder {
+
+namespace {
+
+constexpr int kMaxPixels = 8192;
+constexpr double kMaxScale = 8.0;
+constexpr double kPi = 3.14159265358979323846;
+
+void set_color(cairo_t* cr, const Color& c) { cairo_set_source_rgba(cr, c.r, c.g, c.b, c.a); }
+
+bool visible(const Color& c) { return c.a > 0.0; }
+
+// p5's circle(x, y, diameter) (or, with square, rectMode(CENTER) square of
+// side 2 * radius) with the current fill and stroke.
+void circle(cairo_t* cr, double x, double y, double radius, const Color& fill, const Color& stroke,
+            double stroke_weight, bool square = false) {
+  cairo_new_path(cr);
+  if (radius > 0.0) {
+    if (square) {
+      cairo_rectangle(cr, x - radius, y - radius, 2.0 * radius, 2.0 * radius);
+    } else {
+      cairo_arc(cr, x, y, radius, 0.0, 2.0 * kPi);
+    }
+    if (visible(fill)) {
+      set_color(cr, fill);
+      cairo_fill_preserve(cr);
+    }
+    if (visible(stroke) && stroke_weight > 0.0) {
+      set_color(cr, stroke);
+      cairo_set_line_width(cr, stroke_weight);
+      cairo_stroke_preserve(cr);
+    }
+  } else if (visible(stroke) && stroke_weight > 0.0) {
+    // A point body: p5's point(), a dot as wide as the stroke.
+    cairo_arc(cr, x, y, stroke_weight / 2.0, 0.0, 2.0 * kPi);
+    set_color(cr, stroke);
+    cairo_fill_preserve(cr);
+  }
+  cairo_new_path(cr);
+}
+
+// An arrow from (x, y) along (dx, dy), in the current colour.
+void arrow(cairo_t* cr, double x, double y, double dx, double dy, double weight,
+           double max_length) {
+  double length = std::sqrt(dx * dx + dy * dy);
+  if (!(length >= 0.5) || weight <= 0.0) return;  // too short to see (or not finite)
+  if (length > max_length) {                      // keep Cairo's fixed-point coordinates in range
+    dx *= max_length / length;
+    dy *= max_length / length;
+    length = max_length;
+  }
+  const double head = std::min(3.0 + 2.0 * weight, 0.4 * length);
+  const double ux = dx / length;
+  const double uy = dy / length;
+  const double tip_x = x + dx;
+  const double tip_y = y + dy;
+  cairo_new_path(cr);
+  cairo_set_line_width(cr, weight);
+  cairo_set_line_cap(cr, CAIRO_LINE_CAP_ROUND);
+  cairo_move_to(cr, x, y);
+  cairo_line_to(cr, tip_x - ux * head * 0.8, tip_y - uy * head * 0.8);
+  cairo_stroke(cr);
+  // Head: a triangle 2 * 0.45 * head wide at its base.
+  cairo_move_to(cr, tip_x, tip_y);
+  cairo_line_to(cr, tip_x - ux * head - uy * head * 0.45, tip_y - uy * head + ux * head * 0.45);
+  cairo_line_to(cr, tip_x - ux * head + uy * head * 0.45, tip_y - uy * head - ux * head * 0.45);
+  cairo_close_path(cr);
+  cairo_fill(cr);
+}
+
+std::string format_short(double v) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%.6g", v);
+  return buffer;
+}
+
+// Labels for the legend: the field's name, numbered when it repeats.
+std::vector<std::string> field_labels(const std::deque<Field>& fields) {
+  std::vector<std::string> labels;
+  for (const Field& f : fields) labels.emplace_back(field_name(f));
+  for (std::size_t i = 0; i < labels.size(); ++i) {
+    const std::string name = field_name(fields[i]);
+    const auto same = std::count_if(fields.begin(), fields.end(),
+                                    [&](const Field& f) { return name == field_name(f); });
+    if (same > 1) {
+      const auto nth =
+          std::count_if(fields.begin(), fields.begin() + static_cast<std::ptrdiff_t>(i),
+                        [&](const Field& f) { return name == field_name(f); });
+      labels[i] += ' ';
+      labels[i] += std::to_string(nth + 1);
+    }
+  }
+  return labels;
+}
+
+struct LegendEntry {
+  std::string label;
+  Color color;
+};
+
+// A box of text lines at canvas (x, y) (top-left corner), or anchored at its
+// bottom-left corner when `from_bottom`.
+void text_box(cairo_t* cr, double x, double y, bool from_bottom,
+              const std::vector<LegendEntry>& entries, bool swatches, const Color& text) {
+  if (entries.empty()) return;
+  constexpr double font = 10.0;
+  constexpr double line = 13.0;
+  constexpr double pad = 4.0;
+  constexpr double swatch = 14.0;
+  cairo_select_font_face(cr, "sans-serif", CAIRO_FONT_SLANT_NORMAL, CAIRO_FONT_WEIGHT_NORMAL);
+  cairo_set_font_size(cr, font);
+  double text_width = 0.0;
+  for (const LegendEntry& e : entries) {
+    cairo_text_extents_t extents;
+    cairo_text_extents(cr, e.label.c_str(), &extents);
+    text_width = std::max(text_width, extents.x_advance);
+  }
+  const double left = swatches ? swatch + 4.0 : 0.0;
+  const double w = pad * 2.0 + left + text_width;
+  const double h = pad * 2.0 + line * static_cast<double>(entries.size()) - (line - font) + 2.0;
+  const double top = from_bottom ? y - h : y;
+  cairo_new_path(cr);
+  cairo_rectangle(cr, x, top, w, h);
+  cairo_set_source_rgba(cr, 1.0, 1.0, 1.0, 0.85);
+  cairo_fill_preserve(cr);
+  cairo_set_source_rgba(cr, 0.0, 0.0, 0.0, 0.3);
+  cairo_set_line_width(cr, 0.5);
+  cairo_stroke(cr);
+  for (std::size_t i = 0; i < entries.size(); ++i) {
+    const double baseline = top + pad + font + line * static_cast<double>(i) - 1.0;
+    if (swatches) {
+      set_color(cr, entries[i].color);
+      cairo_set_line_width(cr, 2.0);
+      cairo_set_line_cap(cr, CAIRO_LINE_CAP_BUTT);
+      cairo_move_to(cr, x + pad, baseline - font * 0.35);
+      cairo_line_to(cr, x + pad + swatch, baseline - font * 0.35);
+      cairo_stroke(cr);
+    }
+    set_color(cr, text);
+    cairo_move_to(cr, x + pad + left, baseline);
+    cairo_show_text(cr, entries[i].label.c_str());
+    cairo_new_path(cr);
+  }
+}
+
+// Unpremultiplies one channel as Cairo's PNG writer does.
+std::uint8_t unpremultiply(std::uint32_t c, std::uint32_t a) {
+  return static_cast<std::uint8_t>((c * 255u + a / 2u) / a);
+}
+
+struct PngSink {
+  render_detail::OutputFile* file = nullptr;
+  std::vector<unsigned char>* bytes = nullptr;
+  int error = 0;
+};
+
+cairo_status_t write_png_bytes(void* closure, const unsigned char* data, unsigned int length) {
+  auto* sink = static_cast<PngSink*>(closure);
+  if (sink->bytes != nullptr) {
+    sink->bytes->insert(sink->bytes->end(), data, data + length);
+    return CAIRO_STATUS_SUCCESS;
+  }
+  const int fd = sink->file->fd();
+  std::size_t left = length;
+  while (left > 0) {
+    const ssize_t n = ::write(fd, data, left);
+    if (n < 0) {
+      if (errno == EINTR) continue;
+      sink->error = errno;
+      return CAIRO_STATUS_WRITE_ERROR;
+    }
+    data += n;
+    left -= static_cast<std::size_t>(n);
+  }
+  return CAIRO_STATUS_SUCCESS;
+}
+
+}  // namespace
+
+struct Canvas::Impl {
+  cairo_surface_t* surface = nullptr;
+  cairo_t* cr = nullptr;
+  int width = 0;
+  int height = 0;
+  double scale = 1.0;
+  int pixel_width = 0;
+  int pixel_height = 0;
+  bool fresh = true;  // nothing drawn since construction or clear()
+  // Per-field forces, field-major: force_x[k * n + i].
+  std::vector<double> force_x, force_y, ax, ay;
+
+  ~Impl() {
+    if (cr != nullptr) cairo_destroy(cr);
+    if (surface != nullptr) cairo_surface_destroy(surface);
+  }
+
+  void draw(const World& world, const RenderStyle& style, std::int64_t frame, Vec2 origin,
+            const Scene* scene);
+  void draw_fields(const World& world, const Scene* scene, const RenderStyle& style, double left,
+                   double top, double right, double bottom);
+  void draw_bodies(const World& world, const RenderStyle& style, double left, double top,
+                   double right, double bottom);
+  void draw_vectors(const World& world, const RenderStyle& style);
+  void draw_text(const World& world, const RenderStyle& style, std::int64_t frame);
+};
+
+Canvas::Canvas(int width, int height, double scale) : impl_(std::make_unique<Impl>()) {
+  if (!(std::isfinite(scale) && scale > 0.0 && scale <= kMaxScale)) {
+    throw Error("Canvas: scale must be in (0, 8] (got " + detail::format_number(scale) + ")");
+  }
+  const double pw = std::round(static_cast<double>(width) * scale);
+  const double ph = std::round(static_cast<double>(height) * scale);
+  if (width < 1 || height < 1 || pw < 1.0 || ph < 1.0 || pw > kMaxPixels || ph > kMaxPixels) {
+    throw Error("Canvas: size must be 1..8192 pixels a side once scaled (got " +
+                std::to_string(width) + " x " + std::to_string(height) + " at scale " +
+                detail::format_number(scale) + ")");
+  }
+  Impl& d = *impl_;
+  d.width = width;
+  d.height = height;
+  d.scale = scale;
+  d.pixel_width = static_cast<int>(pw);
+  d.pixel_height = static_cast<int>(ph);
+  d.surface = cairo_image_surface_create(CAIRO_FORMAT_ARGB32, d.pixel_width, d.pixel_height);
+  if (cairo_surface_status(d.surface) != CAIRO_STATUS_SUCCESS) {
+    throw Error(std::string("Canvas: cannot create the image: ") +
+                cairo_status_to_string(cairo_surface_status(d.surface)));
+  }
+  d.cr = cairo_create(d.surface);
+  if (cairo_status(d.cr) != CAIRO_STATUS_SUCCESS) {
+    throw Error(std::string("Canvas: cannot draw: ") + cairo_status_to_string(cairo_status(d.cr)));
+  }
+}
+
+Canvas::~Canvas() = default;
+Canvas::Canvas(Canvas&& other) noexcept = default;
+Canvas& Canvas::operator=(Canvas&& other) noexcept = default;
+
+int Canvas::width() const { return impl_->width; }
+int Canvas::height() const { return impl_->height; }
+double Canvas::scale() const { return impl_->scale; }
+int Canvas::pixel_width() const { return impl_->pixel_width; }
+int Canvas::pixel_height() const { return impl_->pixel_height; }
+int Canvas::stride() const { return cairo_image_surface_get_stride(impl_->surface); }
+const unsigned char* Canvas::argb32_data() const {
+  return cairo_image_surface_get_data(impl_->surface);
+}
+
+void Canvas::clear() {
+  cairo_t* cr = impl_->cr;
+  cairo_save(cr);
+  cairo_set_operator(cr, CAIRO_OPERATOR_CLEAR);
+  cairo_paint(cr);
+  cairo_restore(cr);
+  cairo_surface_flush(impl_->surface);
+  impl_->fresh = true;
+}
+
+void Canvas::draw(const World& world, const Scene& scene, const RenderStyle& style,
+                  std::int64_t frame) {
+  style.validate();
+  detail::require_finite(scene.origin.x, "Canvas::draw", "origin.x");
+  detail::require_finite(scene.origin.y, "Canvas::draw", "origin.y");
+  impl_->draw(world, style, frame, scene.origin, &scene);
+}
+
+void Canvas::draw(const World& world, const RenderStyle& style, std::int64_t frame, Vec2 origin) {
+  style.validate();
+  detail::require_finite(origin.x, "Canvas::draw", "origin.x");
+  detail::require_finite(origin.y, "Canvas::draw", "origin.y");
+  impl_->draw(world, style, frame, origin, nullptr);
+}
+
+void Canvas::Impl::draw(const World& world, const RenderStyle& style, std::int64_t frame,
+                        Vec2 origin, const Scene* scene) {
+  // Restores Cairo's state even when a field (a custom force) throws midway.
+  struct Restore {
+    cairo_t* cr;
+    cairo_surface_t* surface;
+    ~Restore() {
+      cairo_restore(cr);
+      cairo_surface_flush(surface);
+    }
+  };
+  cairo_save(cr);
+  const Restore restore{cr, surface};
+  cairo_identity_matrix(cr);
+  // The background: p5's background(c), or background(c, alpha) for trails.
+  const Color& bg = style.background;
+  if (!style.trails || fresh) {
+    cairo_set_operator(cr, CAIRO_OPERATOR_SOURCE);
+    set_color(cr, bg);
+  } else {
+    cairo_set_operator(cr, CAIRO_OPERATOR_OVER);
+    cairo_set_source_rgba(cr, bg.r, bg.g, bg.b, bg.a * style.trail_alpha);
+  }
+  cairo_paint(cr);
+  cairo_set_operator(cr, CAIRO_OPERATOR_OVER);
+  cairo_set_line_join(cr, CAIRO_LINE_JOIN_ROUND);
+  cairo_set_line_cap(cr, CAIRO_LINE_CAP_ROUND);
+
+  cairo_scale(cr, scale, scale);
+  cairo_matrix_t canvas_matrix;
+  cairo_get_matrix(cr, &canvas_matrix);
+  cairo_translate(cr, origin.x, origin.y);
+  // The canvas in physics coordinates, for culling what can't be seen.
+  const double left = -origin.x;
+  const double top = -origin.y;
+  const double right = left + width;
+  const double bottom = top + height;
+
+  draw_fields(world, scene, style, left, top, right, bottom);
+  draw_bodies(world, style, left, top, right, bottom);
+  if (style.show_forces || style.show_velocity) draw_vectors(world, style);
+
+  cairo_set_matrix(cr, &canvas_matrix);
+  draw_text(world, style, frame);
+  fresh = false;
+}
+
+void Canvas::Impl::draw_fields(const World& world, const Scene* scene, const RenderStyle& style,
+                               double left, double top, double right, double bottom) {
+  for (std::size_t k = 0; k < world.fields().size(); ++k) {
+    // A scene may hide a field (exercise 2.12's invisible attractors).
+    if (scene != nullptr && k < scene->fields.size() && !scene->fields[k].visible) continue;
+    const Field& field = world.fields()[k];
+    if (const auto* liquid = std::get_if<Liquid>(&field)) {
+      if (!liquid->enabled) continue;
+      // p5: noStroke(); fill(200); rect(x, y, w, h), clipped to the canvas
+      // (with a margin) so that a huge region stays within Cairo's range.
+      const Rect& r = liquid->region;
+      const double margin = 10.0 + style.liquid_surface_weight;
+      const double x0 = std::max(r.x, left - margin);
+      const double x1 = std::min(r.x + r.w, right + margin);
+      const double y0 = std::max(r.y, top - margin);
+      const double y1 = std::min(r.y + r.h, bottom + margin);
+      if (x1 <= x0 || y1 < y0) continue;
+      if (visible(style.liquid_fill) && y1 > y0) {
+        cairo_new_path(cr);
+        cairo_rectangle(cr, x0, y0, x1 - x0, y1 - y0);
+        set_color(cr, style.liquid_fill);
+        cairo_fill(cr);
+      }
+      if (visible(style.liquid_surface) && style.liquid_surface_weight > 0.0 &&
+          r.y >= top - margin && r.y <= bottom + margin) {
+        cairo_new_path(cr);
+        cairo_move_to(cr, x0, r.y);
+        cairo_line_to(cr, x1, r.y);
+        set_color(cr, style.liquid_surface);
+        cairo_set_line_width(cr, style.liquid_surface_weight);
+        cairo_stroke(cr);
+      }
+    } else if (const auto* attractor = std::get_if<Attractor>(&field)) {
+      if (!attractor->enabled) continue;
+      const double radius = attractor->mass * style.attractor_diameter_per_mass / 2.0;
+      const double reach = radius + style.attractor_stroke_weight;
+      const Vec2 p = attractor->position;
+      if (p.x + reach < left || p.x - reach > right || p.y + reach < top || p.y - reach > bottom) {
+        continue;
+      }
+      circle(cr, p.x, p.y, radius, style.attractor_fill, style.attractor_stroke,
+             style.attractor_stroke_weight);
+    } else if (const auto* mutual = std::get_if<MutualAttraction>(&field)) {
+      if (!mutual->enabled || !mutual->central || !style.show_central_body) continue;
+      const Vec2 p = mutual->central->position;
+      const double radius = std::sqrt(mutual->central->mass);
+      const double reach = radius + style.body_stroke_weight;
+      if (p.x + reach < left || p.x - reach > right || p.y + reach < top || p.y - reach > bottom) {
+        continue;
+      }
+      circle(cr, p.x, p.y, radius, style.body_fill, style.body_stroke, style.body_stroke_weight);
+    }
+  }
+}
+
+void Canvas::Impl::draw_bodies(const World& world, const RenderStyle& style, double left,
+                               double top, double right, double bottom) {
+  const BodyView bodies = world.bodies();
+  const double stroke = style.body_stroke_weight;
+  for (std::size_t i = 0; i < bodies.size(); ++i) {
+    const double x = bodies.x[i];
+    const double y = bodies.y[i];
+    const double r = bodies.radius[i];
+    const double reach = r + stroke;
+    if (x + reach < left || x - reach > right || y + reach < top || y - reach > bottom) continue;
+    circle(cr, x, y, r, style.body_fill, style.body_stroke, stroke, style.squares);
+  }
+}
+
+void Canvas::Impl::draw_vectors(const World& world, const RenderStyle& style) {
+  const BodyView bodies = world.bodies();
+  const std::size_t n = bodies.size();
+  const double max_length = 4.0 * (width + height);
+  if (style.show_forces) {
+    const std::size_t k_count = world.fields().size();
+    force_x.assign(k_count * n, 0.0);
+    force_y.assign(k_count * n, 0.0);
+    const FieldContext context{bodies,        world.time(),   world.dt(),
+                               world.width(), world.height(), &world.noise()};
+    for (std::size_t k = 0; k < k_count; ++k) {
+      ax.assign(n, 0.0);
+      ay.assign(n, 0.0);
+      accumulate(world.fields()[k], context, 0, n, std::span<double>(ax), std::span<double>(ay));
+      for (std::size_t i = 0; i < n; ++i) {
+        force_x[k * n + i] = ax[i] * bodies.mass[i];
+        force_y[k * n + i] = ay[i] * bodies.mass[i];
+      }
+    }
+    // The net force first and wider, each field's on top of it: a body
+    // under one field shows that field's colour edged with the net's.
+    set_color(cr, style.net_force_color);
+    for (std::size_t i = 0; i < n; ++i) {
+      double fx = 0.0;
+      double fy = 0.0;
+      for (std::size_t k = 0; k < k_count; ++k) {
+        fx += force_x[k * n + i];
+        fy += force_y[k * n + i];
+      }
+      arrow(cr, bodies.x[i], bodies.y[i], fx * style.force_scale, fy * style.force_scale,
+            style.vector_weight * 2.0, max_length);
+    }
+    for (std::size_t k = 0; k < k_count; ++k) {
+      set_color(cr, style.field_colors[k % style.field_colors.size()]);
+      for (std::size_t i = 0; i < n; ++i) {
+        arrow(cr, bodies.x[i], bodies.y[i], force_x[k * n + i] * style.force_scale,
+              force_y[k * n + i] * style.force_scale, style.vector_weight, max_length);
+      }
+    }
+  }
+  if (style.show_velocity) {
+    set_color(cr, style.velocity_color);
+    for (std::size_t i = 0; i < n; ++i) {
+      arrow(cr, bodies.x[i], bodies.y[i], bodies.vx[i] * style.velocity_scale,
+            bodies.vy[i] * style.velocity_scale, style.vector_weight, max_length);
+    }
+  }
+}
+
+void Canvas::Impl::draw_text(const World& world, const RenderStyle& style, std::int64_t frame) {
+  if (style.show_forces || style.show_velocity) {
+    std::vector<LegendEntry> legend;
+    if (style.show_forces) {
+      legend.push_back({"net force", style.net_force_color});
+      const std::vector<std::string> labels = field_labels(world.fields());
+      for (std::size_t k = 0; k < labels.size(); ++k) {
+        legend.push_back({labels[k], style.field_colors[k % style.field_colors.size()]});
+      }
+    }
+    if (style.show_velocity) legend.push_back({"velocity", style.velocity_color});
+    text_box(cr, 6.0, 6.0, false, legend, true, style.text_color);
+  }
+  if (style.show_hud) {
+    std::string energy;
+    try {
+      energy = format_short(total_energy(world));
+    } catch (const Error&) {
+      energy = "n/a";  // a custom attraction law has no potential
+    }
+    const std::string line = "frame " + std::to_string(frame) + "   bodies " +
+                             std::to_string(world.body_count()) + "   energy " + energy;
+    text_box(cr, 6.0, height - 6.0, true, {{line, style.text_color}}, false, style.text_color);
+  }
+}
+
+std::vector<std::uint8_t> Canvas::rgba() const {
+  const int w = impl_->pixel_width;
+  const int h = impl_->pixel_height;
+  const int s = stride();
+  const unsigned char* data = argb32_data();
+  std::vector<std::uint8_t> out(static_cast<std::size_t>(w) * static_cast<std::size_t>(h) * 4u);
+  std::size_t o = 0;
+  for (int y = 0; y < h; ++y) {
+    const unsigned char* row = data + static_cast<std::ptrdiff_t>(y) * s;
+    for (int x = 0; x < w; ++x) {
+      std::uint32_t p;
+      std::memcpy(&p, row + static_cast<std::ptrdiff_t>(x) * 4, sizeof p);
+      const std::uint32_t a = p >> 24;
+      std::uint32_t r = (p >> 16) & 0xffu;
+      std::uint32_t g = (p >> 8) & 0xffu;
+      std::uint32_t b = p & 0xffu;
+      if (a == 0) {
+        r = g = b = 0;
+      } else if (a != 255) {
+        r = unpremultiply(r, a);
+        g = unpremultiply(g, a);
+        b = unpremultiply(b, a);
+      }
+      out[o++] = static_cast<std::uint8_t>(r);
+      out[o++] = static_cast<std::uint8_t>(g);
+      out[o++] = static_cast<std::uint8_t>(b);
+      out[o++] = static_cast<std::uint8_t>(a);
+    }
+  }
+  return out;
+}
+
+std::vector<unsigned char> Canvas::encode_png() const {
+  std::vector<unsigned char> bytes;
+  PngSink sink{nullptr, &bytes, 0};
+  const cairo_status_t status =
+      cairo_surface_write_to_png_stream(impl_->surface, write_png_bytes, &sink);
+  if (status != CAIRO_STATUS_SUCCESS) {
+    throw Error(std::string("Canvas::encode_png: ") + cairo_status_to_string(status));
+  }
+  return bytes;
+}
+
+void Canvas::write_png(const std::string& path) const {
+  render_detail::OutputFile file("Canvas::write_png", path);
+  PngSink sink{&file, nullptr, 0};
+  const cairo_status_t status =
+      cairo_surface_write_to_png_stream(impl_->surface, write_png_bytes, &sink);
+  if (status != CAIRO_STATUS_SUCCESS) {
+    file.discard();
+    if (sink.error != 0) file.fail("write", sink.error);
+    throw Error("Canvas::write_png: cannot write '" + path +
+                "': " + cairo_status_to_string(status));
+  }
+  file.commit();
+}
+
+}  // namespace calder

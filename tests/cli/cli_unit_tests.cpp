@@ -1,0 +1,363 @@
+// Unit tests of the calder command's parts (apps/calder): flag parsing, the
+// --state reader, atomic output files, JSON trajectories, the verbs in process.
+#include <gtest/gtest.h>
+#include <sys/stat.h>
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "calder/calder.hpp"
+#include "cli.hpp"
+#include "errors.hpp"
+#include "output_file.hpp"
+#include "parse.hpp"
+#include "run_command.hpp"
+#include "run_options.hpp"
+#include "state_csv.hpp"
+#include "trajectory_json.hpp"
+
+namespace fs = std::filesystem;
+using calder::app::InputError;
+
+namespace {
+
+// A fresh folder under the system's temporary folder, removed afterwards.
+class TempDir {
+ public:
+  TempDir() {
+    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    path_ = fs::temp_directory_path() /
+            ("calder-cli-" + std::string(info->test_suite_name()) + "-" + info->name());
+    fs::remove_all(path_);
+    fs::create_directories(path_);
+  }
+  ~TempDir() { fs::remove_all(path_); }
+  TempDir(const TempDir&) = delete;
+  TempDir& operator=(const TempDir&) = delete;
+  [[nodiscard]] std::string file(const std::string& name) const { return (path_ / name).string(); }
+  [[nodiscard]] std::vector<std::string> entries() const {
+    std::vector<std::string> names;
+    for (const auto& e : fs::directory_iterator(path_))
+      names.push_back(e.path().filename().string());
+    return names;
+  }
+
+ private:
+  fs::path path_;
+};
+
+std::string read_all(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+std::string message_of(const std::function<void()>& f) {
+  try {
+    f();
+  } catch (const std::exception& e) {
+    return e.what();
+  }
+  return "(no exception)";
+}
+
+struct Result {
+  int status;
+  std::string out;
+  std::string err;
+};
+
+Result cli(std::vector<const char*> args) {
+  args.insert(args.begin(), "calder");
+  std::ostringstream out;
+  std::ostringstream err;
+  const int status = calder::app::main(static_cast<int>(args.size()), args.data(), out, err);
+  return {status, out.str(), err.str()};
+}
+
+}  // namespace
+
+// --- flags ------------------------------------------------------------------------
+
+TEST(CliParse, Numbers) {
+  EXPECT_EQ(calder::app::to_int64("42"), 42);
+  EXPECT_EQ(calder::app::to_int64("+42"), 42);
+  EXPECT_EQ(calder::app::to_int64("-7"), -7);
+  EXPECT_FALSE(calder::app::to_int64("4x"));
+  EXPECT_FALSE(calder::app::to_int64(""));
+  EXPECT_FALSE(calder::app::to_int64("+-1"));
+  EXPECT_FALSE(calder::app::to_int64("99999999999999999999"));
+  EXPECT_EQ(calder::app::to_double("0.1"), 0.1);
+  EXPECT_EQ(calder::app::to_double("30.599999999999998"), 30.599999999999998);
+  EXPECT_EQ(calder::app::to_double("1e-3"), 1e-3);
+  EXPECT_TRUE(std::isnan(*calder::app::to_double("nan")));
+  EXPECT_FALSE(calder::app::to_double("1e400"));
+  EXPECT_FALSE(calder::app::to_double("1.5.2"));
+  EXPECT_FALSE(calder::app::to_double(" 1"));
+}
+
+TEST(CliParse, Flags) {
+  using namespace calder::app;
+  EXPECT_EQ(parse_frames("--frames", "0"), 0);
+  EXPECT_EQ(parse_frames("--frames", "10000000"), 10'000'000);
+  EXPECT_EQ(message_of([] { parse_frames("--frames", "-1"); }),
+            "--frames: expected an integer from 0 to 10000000, got '-1'");
+  EXPECT_THROW(parse_frames("--frames", "10000001"), InputError);
+  EXPECT_EQ(parse_dt("--dt", "0.5"), 0.5);
+  for (const char* bad : {"0", "-1", "nan", "inf", "x"}) {
+    EXPECT_THROW(parse_dt("--dt", bad), InputError) << bad;
+  }
+  EXPECT_EQ(parse_seed("--seed", "4294967295"), 4294967295u);
+  EXPECT_THROW(parse_seed("--seed", "4294967296"), InputError);
+  EXPECT_THROW(parse_seed("--seed", "-1"), InputError);
+}
+
+TEST(CliParse, FrameRanges) {
+  using namespace calder::app;
+  const auto r = parse_frame_range("--mouse-pressed", "100-160");
+  ASSERT_EQ(r.size(), 1u);
+  EXPECT_EQ(r[0].first, 100);
+  EXPECT_EQ(r[0].last, 160);
+  EXPECT_EQ(parse_frame_range("--mouse-pressed", "5-5")[0].last, 5);
+  EXPECT_TRUE(parse_frame_range("--mouse-pressed", "none").empty());
+  for (const char* bad : {"100", "100:160", "0-5", "-1-5", "160-100", "a-b", "1-", "-", "1-2-3"}) {
+    EXPECT_THROW(parse_frame_range("--mouse-pressed", bad), InputError) << bad;
+  }
+  const calder::Vec2 p = parse_point("--mouse", "320,120.5");
+  EXPECT_EQ(p.x, 320.0);
+  EXPECT_EQ(p.y, 120.5);
+  for (const char* bad : {"320", "1,nan", "a,b", "1;2"}) {
+    EXPECT_THROW(parse_point("--mouse", bad), InputError) << bad;
+  }
+}
+
+TEST(CliParse, ApplyFlags) {
+  calder::app::InputOptions options;
+  options.scene = "example-2.1";
+  options.frames = "12";
+  options.dt = "0.5";
+  options.seed = "3";
+  options.mouse_pressed = {"2-3", "7-9"};
+  options.mouse = "1,2";
+  const calder::app::PreparedInput input = calder::app::prepare_input(options);
+  EXPECT_EQ(input.scene.frames, 12);
+  EXPECT_EQ(input.scene.world.dt, 0.5);
+  EXPECT_EQ(input.effective_seed(), 3u);
+  ASSERT_EQ(input.scene.input.mouse_pressed.size(), 2u);
+  EXPECT_EQ(input.scene.input.mouse_pressed[1].first, 7);
+  EXPECT_EQ(input.scene.input.mouse, (calder::Vec2{1, 2}));
+  const calder::Simulation sim = calder::app::start_simulation(input);
+  EXPECT_EQ(sim.world().dt(), 0.5);
+}
+
+// --- --state ----------------------------------------------------------------------
+
+TEST(CliState, ReadsRowsExactly) {
+  std::istringstream in(
+      "x,y,vx,vy,mass,radius\r\n1,2,3,4,5,6\r\n\n 30.599999999999998 , -0.1,0,0,1e-3,0\n");
+  const auto rows = calder::app::parse_state_csv(in, "s.csv");
+  ASSERT_EQ(rows.size(), 2u);
+  EXPECT_EQ(rows[0].mass, 5.0);
+  EXPECT_EQ(rows[0].radius, 6.0);
+  EXPECT_EQ(rows[1].x, 30.599999999999998);
+  EXPECT_EQ(rows[1].y, -0.1);
+  EXPECT_EQ(rows[1].mass, 1e-3);
+}
+
+TEST(CliState, HeaderOnlyIsNoBodies) {
+  std::istringstream in("x,y,vx,vy,mass\n");
+  EXPECT_TRUE(calder::app::parse_state_csv(in, "s.csv").empty());
+}
+
+TEST(CliState, ErrorsNameFileAndLine) {
+  const auto error = [](const std::string& text) {
+    return message_of([&] {
+      std::istringstream in(text);
+      calder::app::parse_state_csv(in, "s.csv");
+    });
+  };
+  EXPECT_EQ(error(""),
+            "s.csv:1: empty file: expected the header 'x,y,vx,vy,mass' or 'x,y,vx,vy,mass,radius'");
+  EXPECT_EQ(error("x,y,vx,vy,m\n"),
+            "s.csv:1: expected the header 'x,y,vx,vy,mass' or 'x,y,vx,vy,mass,radius', got "
+            "'x,y,vx,vy,m'");
+  EXPECT_EQ(error("x,y,vx,vy,mass\n1,2,3,4\n"),
+            "s.csv:2: expected 5 fields (x,y,vx,vy,mass), got 4");
+  EXPECT_EQ(error("x,y,vx,vy,mass\n1,2,3,4,5,6\n"),
+            "s.csv:2: expected 5 fields (x,y,vx,vy,mass), got 6");
+  EXPECT_EQ(error("x,y,vx,vy,mass\n1,2,3,4,1\n1,,3,4,1\n"), "s.csv:3: y: '' is not a number");
+  EXPECT_EQ(error("x,y,vx,vy,mass\ninf,2,3,4,1\n"), "s.csv:2: x must be finite (got 'inf')");
+  EXPECT_EQ(error("x,y,vx,vy,mass\n1,2,3,4,0\n"), "s.csv:2: mass must be > 0 (got 0)");
+  EXPECT_EQ(error("x,y,vx,vy,mass,radius\n1,2,3,4,1,-1\n"),
+            "s.csv:2: radius must be >= 0 (got -1)");
+}
+
+TEST(CliState, RadiusFromTheScene) {
+  const calder::Scene scene = calder::builtin_scene("example-2.2");  // radius = mass * 8
+  std::vector<calder::app::StateRow> rows(2);
+  rows[0].mass = 2;
+  rows[1].mass = 3;
+  rows[1].radius = 1.5;
+  const auto bodies = calder::app::bodies_from_state(rows, scene);
+  EXPECT_EQ(bodies[0].radius, 16.0);
+  EXPECT_EQ(bodies[1].radius, 1.5);
+}
+
+// --- output files -------------------------------------------------------------------
+
+TEST(CliOutputFile, CommitReplacesTheTarget) {
+  TempDir dir;
+  const std::string path = dir.file("out.csv");
+  std::ofstream(path) << "old\n";
+  {
+    calder::app::OutputFile file(path);
+    file.stream() << "new\n";
+    EXPECT_EQ(read_all(path), "old\n");   // untouched until commit
+    EXPECT_EQ(dir.entries().size(), 2u);  // the target and the temporary
+    file.commit();
+  }
+  EXPECT_EQ(read_all(path), "new\n");
+  EXPECT_EQ(dir.entries(), std::vector<std::string>{"out.csv"});
+  // The mode a new file gets (0666 less the umask), not mkstemp's 0600.
+  const mode_t mask = ::umask(0);
+  ::umask(mask);
+  EXPECT_EQ(static_cast<unsigned>(fs::status(path).permissions()), 0666u & ~mask);
+}
+
+TEST(CliOutputFile, NoCommitLeavesNothing) {
+  TempDir dir;
+  {
+    calder::app::OutputFile file(dir.file("out.csv"));
+    file.stream() << "partial";
+  }
+  EXPECT_TRUE(dir.entries().empty());
+}
+
+TEST(CliOutputFile, BadPaths) {
+  TempDir dir;
+  EXPECT_EQ(message_of([&] { calder::app::OutputFile f(dir.file("no/out.csv")); }),
+            dir.file("no/out.csv") + ": cannot create the file: directory '" + dir.file("no") +
+                "' does not exist");
+  EXPECT_EQ(message_of([&] { calder::app::OutputFile f(dir.file("")); }),
+            dir.file("") + ": is a directory, not a file");
+  EXPECT_TRUE(dir.entries().empty());
+}
+
+// --- JSON ---------------------------------------------------------------------------
+
+TEST(CliJson, RoundTripsNumbers) {
+  calder::World world;
+  world.add_body({.position = {0.1, 30.599999999999998}, .velocity = {-1e-300, 2}, .mass = 1});
+  std::ostringstream out;
+  calder::app::TrajectoryJsonWriter writer(
+      out, {.scene = "a \"quoted\" name", .frames = 0, .bodies = 1, .dt = 0.25, .seed = 7});
+  writer.write(0, world);
+  writer.finish();
+  const auto doc = nlohmann::json::parse(out.str());
+  EXPECT_EQ(doc["scene"], "a \"quoted\" name");
+  EXPECT_EQ(doc["dt"].get<double>(), 0.25);
+  EXPECT_EQ(doc["seed"], 7);
+  ASSERT_EQ(doc["rows"].size(), 1u);
+  EXPECT_EQ(doc["rows"][0][2].get<double>(), 0.1);
+  EXPECT_EQ(doc["rows"][0][3].get<double>(), 30.599999999999998);
+  EXPECT_EQ(doc["rows"][0][4].get<double>(), -1e-300);
+}
+
+TEST(CliJson, EmptyWorld) {
+  std::ostringstream out;
+  calder::app::TrajectoryJsonWriter writer(out, {.scene = "x"});
+  writer.write(0, calder::World{});
+  writer.finish();
+  EXPECT_TRUE(nlohmann::json::parse(out.str())["rows"].empty());
+}
+
+TEST(CliRun, FormatAndRowLimit) {
+  using calder::app::TrajectoryFormat;
+  EXPECT_EQ(calder::app::trajectory_format(std::nullopt, "a.JSON"), TrajectoryFormat::json);
+  EXPECT_EQ(calder::app::trajectory_format(std::nullopt, "a.csv"), TrajectoryFormat::csv);
+  EXPECT_EQ(calder::app::trajectory_format("csv", "a.json"), TrajectoryFormat::csv);
+  EXPECT_NO_THROW(calder::app::check_trajectory_rows(49'999'999, 1));
+  EXPECT_NO_THROW(calder::app::check_trajectory_rows(0, 50'000'000));
+  EXPECT_THROW(calder::app::check_trajectory_rows(50'000'000, 1), InputError);
+  EXPECT_THROW(calder::app::check_trajectory_rows(10'000'000, 10'000'000), InputError);
+}
+
+// --- the verbs, in process ----------------------------------------------------------
+
+TEST(CliMain, ListsEveryBuiltinScene) {
+  const Result r = cli({"list"});
+  EXPECT_EQ(r.status, 0);
+  EXPECT_EQ(r.err, "");
+  for (const auto& s : calder::builtin_scenes()) {
+    EXPECT_NE(r.out.find(s.name + "  "), std::string::npos) << s.name;
+    EXPECT_NE(r.out.find(s.description), std::string::npos) << s.name;
+  }
+}
+
+TEST(CliMain, UsageErrorsExit2OnOneLine) {
+  for (const std::vector<const char*>& args :
+       std::vector<std::vector<const char*>>{{},
+                                             {"fly"},
+                                             {"run"},
+                                             {"run", "example-2.1", "--frames"},
+                                             {"run", "example-2.1", "--nope"},
+                                             {"run", "example-2.1", "extra"},
+                                             {"list", "extra"},
+                                             {"run", "example-2.1", "--format", "json"}}) {
+    const Result r = cli(args);
+    std::string shown;
+    for (const char* a : args) shown += std::string(" ") + a;
+    EXPECT_EQ(r.status, 2) << shown;
+    EXPECT_EQ(r.out, "") << shown;
+    EXPECT_EQ(r.err.rfind("calder: ", 0), 0u) << shown << ": " << r.err;
+    EXPECT_EQ(r.err.find('\n'), r.err.size() - 1) << shown << ": " << r.err;
+  }
+}
+
+TEST(CliMain, HelpAndVersionExit0) {
+  for (const std::vector<const char*>& args : std::vector<std::vector<const char*>>{
+           {"--help"}, {"run", "--help"}, {"list", "--help"}, {"--version"}}) {
+    const Result r = cli(args);
+    EXPECT_EQ(r.status, 0) << args.back();
+    EXPECT_EQ(r.err, "");
+    EXPECT_FALSE(r.out.empty());
+  }
+}
+
+TEST(CliMain, NegativeFramesReachTheRangeCheck) {
+  const Result r = cli({"run", "example-2.1", "--frames", "-1"});
+  EXPECT_EQ(r.status, 2);
+  EXPECT_EQ(r.err, "calder: --frames: expected an integer from 0 to 10000000, got '-1'\n");
+}
+
+TEST(CliMain, SummaryHashEqualsTheWorldsHash) {
+  const Result r = cli({"run", "example-2.7", "--frames", "50", "--seed", "4"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  calder::Simulation sim(calder::builtin_scene("example-2.7"), 4u);
+  for (int i = 0; i < 50; ++i) sim.step();
+  char hash[17];
+  std::snprintf(hash, sizeof hash, "%016llx",
+                static_cast<unsigned long long>(calder::state_hash(sim.world())));
+  EXPECT_NE(r.out.find(std::string("state hash        ") + hash + "\n"), std::string::npos)
+      << r.out;
+}
+
+TEST(CliMain, RuntimeFailureExits1) {
+  TempDir dir;
+  std::ofstream(dir.file("state.csv")) << "x,y,vx,vy,mass\n1e308,0,1.7e308,0,1\n";
+  const std::string state = dir.file("state.csv");
+  const std::string out = dir.file("out.csv");
+  const Result r =
+      cli({"run", "example-2.8", "--state", state.c_str(), "--trajectory", out.c_str()});
+  EXPECT_EQ(r.status, 1);
+  EXPECT_EQ(r.err.rfind("calder: example-2.8: frame 1: ", 0), 0u) << r.err;
+  EXPECT_EQ(dir.entries(), std::vector<std::string>{"state.csv"});
+}

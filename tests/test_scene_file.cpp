@@ -1,0 +1,679 @@
+// Tests of scene files (calder/scene_file.hpp, docs/SCENES.md): the files of
+// scenes/ against the built-in scenes (bit-identical trajectories), to_toml's
+// round trip, every kind of error with its line and column, the defaults, the
+// order of random draws, and every example of docs/SCENES.md.
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <bit>
+#include <cstddef>
+#include <cstdint>
+#include <fstream>
+#include <limits>
+#include <optional>
+#include <sstream>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <variant>
+#include <vector>
+
+#include "calder/diagnostics.hpp"
+#include "calder/error.hpp"
+#include "calder/fields.hpp"
+#include "calder/random.hpp"
+#include "calder/scene.hpp"
+#include "calder/scene_file.hpp"
+#include "calder/world.hpp"
+
+namespace {
+
+using calder::Scene;
+using calder::SceneFileError;
+using calder::Simulation;
+using ::testing::HasSubstr;
+using ::testing::StartsWith;
+
+std::string scene_path(const std::string& name) {
+  return std::string(CALDER_SOURCE_DIR) + "/scenes/" + name + ".toml";
+}
+
+// The message of the SceneFileError that parsing text throws.
+std::string error_of(std::string_view text) {
+  try {
+    (void)calder::parse_scene(text, "t.toml");
+  } catch (const SceneFileError& e) {
+    return e.what();
+  }
+  return "(no error)";
+}
+
+std::uint64_t bits(double v) { return std::bit_cast<std::uint64_t>(v); }
+
+// Runs both simulations `frames` frames with their scripted input and expects
+// every body's position and velocity to be the same bits after every frame.
+void expect_same_trajectory(Simulation& a, Simulation& b, int frames) {
+  ASSERT_EQ(a.world().body_count(), b.world().body_count());
+  for (int frame = 0; frame <= frames; ++frame) {
+    if (frame > 0) {
+      a.step();
+      b.step();
+    }
+    const calder::BodyView va = a.world().bodies();
+    const calder::BodyView vb = b.world().bodies();
+    ASSERT_EQ(va.size(), vb.size()) << "frame " << frame;
+    for (std::size_t i = 0; i < va.size(); ++i) {
+      ASSERT_EQ(bits(va.x[i]), bits(vb.x[i])) << "frame " << frame << " body " << i << " x";
+      ASSERT_EQ(bits(va.y[i]), bits(vb.y[i])) << "frame " << frame << " body " << i << " y";
+      ASSERT_EQ(bits(va.vx[i]), bits(vb.vx[i])) << "frame " << frame << " body " << i << " vx";
+      ASSERT_EQ(bits(va.vy[i]), bits(vb.vy[i])) << "frame " << frame << " body " << i << " vy";
+      ASSERT_EQ(bits(va.mass[i]), bits(vb.mass[i])) << "frame " << frame << " body " << i;
+      ASSERT_EQ(bits(va.radius[i]), bits(vb.radius[i])) << "frame " << frame << " body " << i;
+    }
+  }
+}
+
+// The mouse held from frame 100 to 160 at the attractor of 2.6 and 2.7, moved
+// at frame 130: wind blows, 2.5 resets, the attractor is dragged.
+calder::InputScript press_script() {
+  calder::InputScript in;
+  in.mouse_pressed = {{100, 160}};
+  in.mouse = {320.0, 120.0};
+  in.moves = {{130, {300.0, 100.0}}};
+  return in;
+}
+
+// --- the scene files of scenes/ against the built-in scenes ---------------------------
+
+std::vector<std::string> builtin_names() {
+  std::vector<std::string> names;
+  for (const calder::SceneInfo& info : calder::builtin_scenes()) names.push_back(info.name);
+  return names;
+}
+
+class SceneFileBuiltin : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(SceneFileBuiltin, FileDescribesTheBuiltinScene) {
+  const Scene file = calder::load_scene_file(scene_path(GetParam()));
+  const Scene builtin = calder::builtin_scene(GetParam());
+  // Same text once written: every parameter, the name and the description.
+  EXPECT_EQ(calder::to_toml(file), calder::to_toml(builtin));
+}
+
+TEST_P(SceneFileBuiltin, SameTrajectoryBitForBit) {
+  Simulation from_file(calder::load_scene_file(scene_path(GetParam())), 1);
+  Simulation builtin(calder::builtin_scene(GetParam()), 1);
+  expect_same_trajectory(from_file, builtin, 600);
+}
+
+TEST_P(SceneFileBuiltin, SameTrajectoryWithTheMousePressed) {
+  Scene file = calder::load_scene_file(scene_path(GetParam()));
+  Scene builtin = calder::builtin_scene(GetParam());
+  file.input = press_script();
+  builtin.input = press_script();
+  Simulation a(std::move(file), 1);
+  Simulation b(std::move(builtin), 1);
+  expect_same_trajectory(a, b, 600);
+}
+
+TEST_P(SceneFileBuiltin, ToTomlRoundTrip) {
+  const Scene scene = calder::builtin_scene(GetParam());
+  const std::string text = calder::to_toml(scene);
+  const Scene back = calder::parse_scene(text, GetParam() + ".toml");
+  EXPECT_EQ(calder::to_toml(back), text);
+  Simulation a(scene, 1);
+  Simulation b(back, 1);
+  for (int i = 0; i < 50; ++i) {
+    a.step();
+    b.step();
+  }
+  EXPECT_EQ(calder::state_hash(a.world()), calder::state_hash(b.world()));
+}
+
+std::string test_name(const ::testing::TestParamInfo<std::string>& info) {
+  std::string name = info.param;
+  for (char& c : name) {
+    if (c == '-' || c == '.') c = '_';
+  }
+  return name;
+}
+
+INSTANTIATE_TEST_SUITE_P(SceneFile, SceneFileBuiltin, ::testing::ValuesIn(builtin_names()),
+                         test_name);
+
+TEST(SceneFileBuiltinTest, EveryBuiltinSceneHasAFile) {
+  for (const std::string& name : builtin_names()) {
+    std::ifstream file(scene_path(name));
+    EXPECT_TRUE(file.good()) << scene_path(name);
+  }
+}
+
+// --- errors: "FILE:LINE:COLUMN: problem" --------------------------------------------------
+
+TEST(SceneFileErrors, MissingFile) {
+  try {
+    (void)calder::load_scene_file("/nonexistent/rain.toml");
+    FAIL() << "no error";
+  } catch (const SceneFileError& e) {
+    EXPECT_STREQ(e.what(), "/nonexistent/rain.toml: cannot read: No such file or directory");
+  }
+}
+
+TEST(SceneFileErrors, UnreadableFile) {
+  const std::string dir = std::string(CALDER_SOURCE_DIR) + "/scenes";
+  try {
+    (void)calder::load_scene_file(dir);
+    FAIL() << "no error";
+  } catch (const SceneFileError& e) {
+    EXPECT_EQ(std::string(e.what()), dir + ": cannot read: Is a directory");
+  }
+}
+
+TEST(SceneFileErrors, IsACalderError) {
+  EXPECT_THROW((void)calder::parse_scene("frames = -1", "t.toml"), calder::Error);
+}
+
+TEST(SceneFileErrors, TomlSyntax) {
+  EXPECT_THAT(error_of("name = \"x\"\nframes = 600\nseed = \n"), StartsWith("t.toml:3:8: "));
+  // A trailing comma in an inline table, which TOML forbids.
+  EXPECT_THAT(error_of("[[bodies]]\nposition = [1, 2]\nmass = { min = 1, max = 2, }\n"),
+              StartsWith("t.toml:3:28: "));
+  EXPECT_THAT(error_of("frames = 1\nframes = 2\n"),
+              ::testing::AllOf(StartsWith("t.toml:2:"), HasSubstr("frames")));
+}
+
+TEST(SceneFileErrors, UnknownKeySuggestsTheNearest) {
+  EXPECT_EQ(error_of("name = \"rain\"\n\n[[bodies]]\n  position = [1, 2]\n  mas = 1\n"),
+            "t.toml:5:3: unknown key 'mas' in [[bodies]] (did you mean 'mass'?)");
+  EXPECT_EQ(error_of("[[fields]]\ntype = \"gravity\"\nscale_by_mas = true\n"),
+            "t.toml:3:1: unknown key 'scale_by_mas' in [[fields]] of type 'gravity' (did you mean "
+            "'scale_by_mass'?)");
+  EXPECT_EQ(error_of("[canvas]\nwidht = 10\n"),
+            "t.toml:2:1: unknown key 'widht' in [canvas] (did you mean 'width'?)");
+  EXPECT_EQ(error_of("[[bodys]]\nmass = 1\n"),
+            "t.toml:1:3: unknown key 'bodys' in the top level (did you mean 'bodies'?)");
+  // In an inline table.
+  EXPECT_EQ(error_of("[[fields]]\ntype = \"attractor\"\nlaw = { g = 1 }\n"),
+            "t.toml:3:9: unknown key 'g' in 'law' (did you mean 'G'?)");
+  EXPECT_EQ(error_of("[[bodies]]\nposition = [0, 0]\nmass = { min = 1, mx = 2 }\n"),
+            "t.toml:3:19: unknown key 'mx' in 'mass' (did you mean 'max'?)");
+}
+
+TEST(SceneFileErrors, UnknownKeyFarFromAnyListsTheValidKeys) {
+  EXPECT_EQ(error_of("[[fields]]\ntype = \"wind\"\nstrength = 1\n"),
+            "t.toml:3:1: unknown key 'strength' in [[fields]] of type 'wind' (valid keys: type, "
+            "force, enabled, visible, while_pressed, follow_mouse, draggable)");
+}
+
+TEST(SceneFileErrors, TheFirstUnknownKeyInTheFile) {
+  // toml++ keeps keys sorted; the error names the first one in the file.
+  EXPECT_THAT(error_of("[[bodies]]\nzz = 1\naa = 2\nposition = [0, 0]\nmass = 1\n"),
+              StartsWith("t.toml:2:1: unknown key 'zz'"));
+}
+
+TEST(SceneFileErrors, KeyOfTheOtherLayout) {
+  EXPECT_EQ(error_of("[[bodies]]\nlayout = \"orbit\"\nx = 1\nmass = 1\n"),
+            "t.toml:3:1: 'x' is not used with layout = \"orbit\" (it places bodies with center, "
+            "distance and speed)");
+  EXPECT_EQ(error_of("[[bodies]]\nposition = [0, 0]\nmass = 1\ndistance = 3\n"),
+            "t.toml:4:1: 'distance' is used only with layout = \"orbit\"");
+}
+
+TEST(SceneFileErrors, WrongType) {
+  EXPECT_EQ(error_of("[[bodies]]\nposition = [0, 0]\nmass = \"heavy\"\n"),
+            "t.toml:3:8: 'mass' must be a number, { min = a, max = b } or { start = a, step = b }, "
+            "got a string");
+  EXPECT_EQ(error_of("[world]\ndt = \"1\"\n"),
+            "t.toml:2:6: 'world.dt' must be a number, got a string");
+  EXPECT_EQ(error_of("frames = 600.0\n"), "t.toml:1:10: 'frames' must be an integer, got a float");
+  EXPECT_EQ(error_of("[[fields]]\ntype = \"gravity\"\ng = [0, \"down\"]\n"),
+            "t.toml:3:9: 'g[1]' must be a number, got a string");
+  EXPECT_EQ(error_of("[[fields]]\ntype = \"gravity\"\ng = [0, 1, 2]\n"),
+            "t.toml:3:5: 'g' must be an array of 2 numbers [x, y], got an array of 3");
+  EXPECT_EQ(error_of("[[fields]]\ntype = \"drag\"\nnever_reverse = 1\n"),
+            "t.toml:3:17: 'never_reverse' must be true or false, got an integer");
+  EXPECT_EQ(error_of("[bodies]\nmass = 1\n"),
+            "t.toml:1:1: 'bodies' must be an array of tables ([[bodies]]), got a table");
+  EXPECT_EQ(error_of("canvas = 3\n"), "t.toml:1:10: 'canvas' must be a table, got an integer");
+}
+
+TEST(SceneFileErrors, MissingRequiredKey) {
+  EXPECT_EQ(error_of("[[fields]]\ng = [0, 1]\n"),
+            "t.toml:1:1: missing required key 'type' in [[fields]]");
+  EXPECT_EQ(error_of("frames = 10\n\n[[bodies]]\nposition = [0, 0]\n"),
+            "t.toml:3:1: missing required key 'mass' in [[bodies]]");
+  EXPECT_EQ(error_of("[[bodies]]\nmass = 1\n"),
+            "t.toml:1:1: missing required key 'position' (or 'x' and 'y') in [[bodies]]");
+  EXPECT_EQ(error_of("[[bodies]]\nmass = 1\nx = 3\n"),
+            "t.toml:1:1: missing required key 'y' in [[bodies]]");
+  EXPECT_EQ(error_of("[[bodies]]\nlayout = \"orbit\"\nmass = 1\nspeed = 1\n"),
+            "t.toml:1:1: missing required key 'distance' in [[bodies]]");
+  EXPECT_EQ(error_of("[boundary]\nrestitution = 0.9\n"),
+            "t.toml:1:1: missing required key 'kind' in [boundary]");
+  EXPECT_EQ(error_of("[[bodies]]\nposition = [0, 0]\nmass = { min = 1 }\n"),
+            "t.toml:3:8: missing required key 'max' in 'mass'");
+  EXPECT_EQ(error_of("[input]\nmoves = [{ position = [1, 2] }]\n"),
+            "t.toml:2:10: missing required key 'frame' in 'input.moves[0]'");
+}
+
+TEST(SceneFileErrors, OutOfRange) {
+  EXPECT_EQ(error_of("[[bodies]]\nposition = [0, 0]\nmass = 0\n"),
+            "t.toml:3:8: 'mass' must be > 0, got 0");
+  EXPECT_EQ(error_of("[[bodies]]\nposition = [0, 0]\nmass = -1.5\n"),
+            "t.toml:3:8: 'mass' must be > 0, got -1.5");
+  EXPECT_EQ(error_of("[[bodies]]\nposition = [0, 0]\nmass = { min = -1, max = 2 }\n"),
+            "t.toml:3:16: 'mass.min' must be > 0, got -1");
+  EXPECT_EQ(error_of("[[bodies]]\ncount = 3\nposition = [0, 0]\nmass = { start = 2, step = -1 }\n"),
+            "t.toml:4:8: 'mass' of the last body (2) would be 0; masses must be > 0");
+  EXPECT_EQ(error_of("[[bodies]]\ncount = -1\nposition = [0, 0]\nmass = 1\n"),
+            "t.toml:2:9: 'count' must be between 0 and 10000000, got -1");
+  EXPECT_EQ(error_of("[[bodies]]\ncount = 10000001\nposition = [0, 0]\nmass = 1\n"),
+            "t.toml:2:9: 'count' must be between 0 and 10000000, got 10000001");
+  EXPECT_EQ(error_of("[[bodies]]\ncount = 6000000\nposition = [0, 0]\nmass = 1\n"
+                     "[[bodies]]\ncount = 6000000\nposition = [0, 0]\nmass = 1\n"),
+            "t.toml:6:9: more than 10000000 bodies in all (6000000 before this group)");
+  EXPECT_EQ(error_of("frames = -1\n"),
+            "t.toml:1:10: 'frames' must be between 0 and 10000000, got -1");
+  EXPECT_EQ(error_of("frames = 10_000_001\n"),
+            "t.toml:1:10: 'frames' must be between 0 and 10000000, got 10000001");
+  EXPECT_EQ(error_of("seed = 4294967296\n"),
+            "t.toml:1:8: 'seed' must be between 0 and 4294967295, got 4294967296");
+  EXPECT_EQ(error_of("seed = -1\n"), "t.toml:1:8: 'seed' must be between 0 and 4294967295, got -1");
+  EXPECT_EQ(error_of("[world]\ndt = 0\n"), "t.toml:2:6: 'world.dt' must be > 0, got 0");
+  EXPECT_EQ(error_of("[[fields]]\ntype = \"fan\"\nreach = 0\n"),
+            "t.toml:3:9: 'reach' must be > 0, got 0");
+  EXPECT_EQ(error_of("[[fields]]\ntype = \"liquid\"\nregion = [0, 0, -1, 10]\n"),
+            "t.toml:3:17: 'region[2]' must be >= 0, got -1");
+  EXPECT_EQ(error_of("[input]\nmouse_pressed = [[5, 3]]\n"),
+            "t.toml:2:22: 'input.mouse_pressed[0][1]' must be between 5 and 9223372036854775807, "
+            "got 3");
+  EXPECT_EQ(error_of("[input]\nmoves = [{ frame = 5, position = [0, 0] }, { frame = 3, position = "
+                     "[0, 0] }]\n"),
+            "t.toml:2:54: mouse moves must be sorted by frame (frame 3 comes after frame 5)");
+}
+
+TEST(SceneFileErrors, NanAndInfinity) {
+  EXPECT_EQ(error_of("[[bodies]]\nposition = [0, 0]\nmass = nan\n"),
+            "t.toml:3:8: 'mass' must be a finite number, got nan");
+  EXPECT_EQ(error_of("[[fields]]\ntype = \"gravity\"\ng = [0, -inf]\n"),
+            "t.toml:3:9: 'g[1]' must be a finite number, got -inf");
+  EXPECT_EQ(error_of("[canvas]\nwidth = +inf\n"),
+            "t.toml:2:9: 'canvas.width' must be a finite number, got inf");
+  EXPECT_EQ(error_of("[[fields]]\ntype = \"attractor\"\nlaw = { G = nan }\n"),
+            "t.toml:3:13: 'law.G' must be a finite number, got nan");
+}
+
+TEST(SceneFileErrors, UnknownChoiceListsTheValidOnes) {
+  EXPECT_EQ(error_of("[world]\nintegrator = \"rk5\"\n"),
+            "t.toml:2:14: 'world.integrator' must be one of semi_implicit_euler, velocity_verlet, "
+            "rk4 (got 'rk5'; did you mean 'rk4'?)");
+  EXPECT_EQ(error_of("[boundary]\nkind = \"bounce\"\nedges = [\"left\", \"floor\"]\n"),
+            "t.toml:3:18: 'boundary.edges[1]' must be one of left, right, top, bottom (got "
+            "'floor')");
+  EXPECT_EQ(
+      error_of("[[fields]]\ntype = \"gravty\"\n"),
+      "t.toml:2:8: 'type' must be one of gravity, wind, noise_wind, helium, fan, edge_force, "
+      "friction, liquid, drag, lift, attractor, mutual_attraction (got 'gravty'; did you mean "
+      "'gravity'?)");
+  EXPECT_THAT(error_of("on_press = \"click\"\n"),
+              StartsWith("t.toml:1:12: 'on_press' must be one of none, reset"));
+}
+
+TEST(SceneFileErrors, CustomForceCantBeWritten) {
+  EXPECT_THAT(error_of("[[fields]]\ntype = \"custom_force\"\n"),
+              StartsWith("t.toml:2:8: a custom_force can't be written in a scene file"));
+}
+
+TEST(SceneFileErrors, BindingsOnTheWrongField) {
+  EXPECT_EQ(error_of("[[fields]]\ntype = \"gravity\"\nfollow_mouse = true\n"),
+            "t.toml:3:16: only a fan or an attractor can follow the mouse");
+  EXPECT_EQ(error_of("[[fields]]\ntype = \"fan\"\ndraggable = true\n"),
+            "t.toml:3:13: only an attractor can be dragged");
+}
+
+TEST(SceneFileErrors, ConflictsAndDuplicates) {
+  EXPECT_EQ(error_of("[[bodies]]\nposition = [0, 0]\nx = 1\nmass = 1\n"),
+            "t.toml:2:12: give either 'position' or 'x' and 'y', not both");
+  EXPECT_EQ(
+      error_of("[[bodies]]\nposition = [0, 0]\nmass = { min = 1, max = 2, step = 1 }\n"),
+      "t.toml:3:8: 'mass' is either { min = a, max = b } or { start = a, step = b }, not both");
+  EXPECT_EQ(error_of("[boundary]\nkind = \"wrap\"\nedges = [\"top\", \"top\"]\n"),
+            "t.toml:3:17: edge 'top' is listed twice");
+  EXPECT_EQ(
+      error_of("[world]\nintegrator = \"rk4\"\nupdate_order = \"sequential\"\n"),
+      "t.toml:3:16: update_order = \"sequential\" needs integrator = \"semi_implicit_euler\"");
+}
+
+TEST(SceneFileErrors, ValidationOfALawPointsAtIt) {
+  // AttractionLaw::validate's message, placed at the law.
+  EXPECT_EQ(error_of("[[fields]]\ntype = \"attractor\"\nlaw = { min = 30, max = 25 }\n"),
+            "t.toml:3:7: attractor: attraction law: min must not exceed max (got min 30, max 25)");
+}
+
+TEST(SceneFileErrors, OneLine) {
+  const std::string m = error_of("[[bodies]]\n\"a\\nb\" = 1\n");
+  EXPECT_EQ(m.find('\n'), std::string::npos) << m;
+}
+
+// --- values -------------------------------------------------------------------------------
+
+TEST(SceneFile, IntegersAreAcceptedAsFloats) {
+  const Scene s = calder::parse_scene(R"(
+[canvas]
+width = 800
+height = 600
+[world]
+dt = 2
+[[bodies]]
+position = [1, -2]
+mass = 3
+radius = 4
+friction = 0
+[[fields]]
+type = "gravity"
+g = [0, 1]
+)",
+                                      "t.toml");
+  EXPECT_EQ(s.world.width, 800.0);
+  EXPECT_EQ(s.world.height, 600.0);
+  EXPECT_EQ(s.world.dt, 2.0);
+  ASSERT_EQ(s.bodies.size(), 1u);
+  EXPECT_EQ(s.bodies[0].x.value, 1.0);
+  EXPECT_EQ(s.bodies[0].y.value, -2.0);
+  EXPECT_EQ(s.bodies[0].mass.value, 3.0);
+  EXPECT_EQ(s.bodies[0].radius.k, 4.0);
+  EXPECT_EQ(s.bodies[0].friction, std::optional<double>(0.0));
+  EXPECT_EQ(std::get<calder::Gravity>(s.fields[0].field).g, (calder::Vec2{0.0, 1.0}));
+}
+
+TEST(SceneFile, Defaults) {
+  const Scene s = calder::parse_scene(R"(
+[[bodies]]
+position = [10, 20]
+mass = 2
+)",
+                                      "some/dir/rain.toml");
+  const Scene plain;
+  EXPECT_EQ(s.name, "rain");  // the file's stem
+  EXPECT_EQ(s.description, "");
+  EXPECT_EQ(s.frames, 600);
+  EXPECT_EQ(s.world.seed, 0u);
+  EXPECT_EQ(s.world.width, 640.0);
+  EXPECT_EQ(s.world.height, 240.0);
+  EXPECT_EQ(s.world.dt, 1.0);
+  EXPECT_EQ(s.world.integrator, calder::Integrator::semi_implicit_euler);
+  EXPECT_EQ(s.world.update_order, calder::UpdateOrder::simultaneous);
+  EXPECT_EQ(s.world.boundary.kind, calder::BoundaryKind::none);
+  EXPECT_EQ(s.on_press, calder::PressAction::none);
+  EXPECT_EQ(s.origin, calder::Vec2{});
+  EXPECT_TRUE(s.input.mouse_pressed.empty());
+  const calder::BodyGroup& g = s.bodies.at(0);
+  EXPECT_EQ(g.count, 1u);
+  EXPECT_EQ(g.layout, calder::BodyGroup::Layout::grid);
+  EXPECT_EQ(g.vx.kind, calder::Draw::Kind::fixed);
+  EXPECT_EQ(g.vx.value, 0.0);
+  EXPECT_EQ(g.vy.value, 0.0);
+  EXPECT_EQ(g.radius.kind, calder::RadiusRule::Kind::fixed);
+  EXPECT_EQ(g.radius.k, 0.0);
+  EXPECT_FALSE(g.friction.has_value());
+  EXPECT_EQ(g.drag_area, 1.0);
+  EXPECT_EQ(calder::to_toml(s).find("[input]"), std::string::npos);
+  (void)plain;
+}
+
+TEST(SceneFile, BoundaryDefaultsOnceAKindIsGiven) {
+  const Scene s = calder::parse_scene("[boundary]\nkind = \"bounce\"\n", "t.toml");
+  const calder::Boundary& b = s.world.boundary;
+  EXPECT_EQ(b.kind, calder::BoundaryKind::bounce);
+  EXPECT_EQ(b.restitution, 1.0);
+  EXPECT_FALSE(b.use_radius);
+  EXPECT_TRUE(b.edges.left && b.edges.right && b.edges.top && b.edges.bottom);
+  EXPECT_EQ(b.timing, calder::BoundaryTiming::after_update);
+  const Scene none = calder::parse_scene("[boundary]\nkind = \"wrap\"\nedges = []\n", "t.toml");
+  EXPECT_FALSE(none.world.boundary.edges.left || none.world.boundary.edges.right ||
+               none.world.boundary.edges.top || none.world.boundary.edges.bottom);
+}
+
+TEST(SceneFile, FieldDefaultsAreTheStructDefaults) {
+  std::string text;
+  for (const char* type :
+       {"gravity", "wind", "noise_wind", "helium", "fan", "edge_force", "friction", "liquid",
+        "drag", "lift", "attractor", "mutual_attraction"}) {
+    text += std::string("[[fields]]\ntype = \"") + type + "\"\n";
+  }
+  const Scene s = calder::parse_scene(text, "t.toml");
+  ASSERT_EQ(s.fields.size(), 12u);
+  // Each field, written, is the same as the default-constructed struct.
+  const calder::Field expected[] = {
+      calder::Gravity{}, calder::Wind{},      calder::NoiseWind{}, calder::Helium{},
+      calder::Fan{},     calder::EdgeForce{}, calder::Friction{},  calder::Liquid{},
+      calder::Drag{},    calder::Lift{},      calder::Attractor{}, calder::MutualAttraction{}};
+  Scene reference;
+  reference.name = s.name;
+  for (const calder::Field& f : expected) reference.fields.push_back({f, {}});
+  EXPECT_EQ(calder::to_toml(s), calder::to_toml(reference));
+  for (const calder::SceneField& f : s.fields) {
+    EXPECT_TRUE(std::visit([](const auto& field) { return field.enabled; }, f.field));
+    EXPECT_TRUE(f.visible);
+    EXPECT_FALSE(f.binding.while_pressed || f.binding.follow_mouse || f.binding.draggable);
+  }
+  const auto& law = std::get<calder::Attractor>(s.fields[10].field).law;
+  const calder::AttractionLaw book{};
+  EXPECT_EQ(law.G, book.G);
+  EXPECT_EQ(law.clamp, book.clamp);
+  EXPECT_EQ(law.min, book.min);
+  EXPECT_EQ(law.max, book.max);
+  EXPECT_EQ(law.product, book.product);
+}
+
+TEST(SceneFile, GridDrawsInTheDocumentedOrder) {
+  const Scene s = calder::parse_scene(R"(
+seed = 7
+[[bodies]]
+count = 4
+x = { min = 0, max = 640 }
+y = { start = 10, step = 5 }
+mass = { min = 1, max = 2 }
+vx = { min = -1, max = 1 }
+vy = 0.5
+radius = { per_mass = 8 }
+[[bodies]]
+count = 2
+x = 3
+y = { min = 100, max = 50 }
+mass = 1
+velocity = [0, 0]
+)",
+                                      "t.toml");
+  Simulation sim(s);
+  calder::Random rng(7);
+  const calder::BodyView b = sim.world().bodies();
+  ASSERT_EQ(b.size(), 6u);
+  for (std::size_t i = 0; i < 4; ++i) {
+    const double x = rng.random(0.0, 640.0);
+    const double mass = rng.random(1.0, 2.0);
+    const double vx = rng.random(-1.0, 1.0);
+    EXPECT_EQ(bits(b.x[i]), bits(x)) << i;
+    EXPECT_EQ(bits(b.y[i]), bits(10.0 + static_cast<double>(i) * 5.0)) << i;
+    EXPECT_EQ(bits(b.mass[i]), bits(mass)) << i;
+    EXPECT_EQ(bits(b.vx[i]), bits(vx)) << i;
+    EXPECT_EQ(b.vy[i], 0.5);
+    EXPECT_EQ(bits(b.radius[i]), bits(mass * 8.0));
+  }
+  for (std::size_t i = 4; i < 6; ++i) {
+    EXPECT_EQ(b.x[i], 3.0);
+    EXPECT_EQ(bits(b.y[i]), bits(rng.random(100.0, 50.0)));  // p5 swaps the bounds
+  }
+}
+
+TEST(SceneFile, OrbitDrawsInTheDocumentedOrder) {
+  const Scene s = calder::parse_scene(R"(
+seed = 3
+[[bodies]]
+count = 3
+layout = "orbit"
+center = [5, 6]
+distance = { min = 100, max = 150 }
+speed = { min = 10, max = 15 }
+mass = { min = 1, max = 4 }
+radius = { per_sqrt_mass = 1 }
+)",
+                                      "t.toml");
+  Simulation sim(s);
+  calder::Random rng(3);
+  const calder::BodyView b = sim.world().bodies();
+  ASSERT_EQ(b.size(), 3u);
+  for (std::size_t i = 0; i < 3; ++i) {
+    calder::Vec2 direction = rng.random2d();
+    calder::Vec2 velocity = direction;
+    velocity.set_mag(rng.random(10.0, 15.0));
+    direction.set_mag(rng.random(100.0, 150.0));
+    velocity.rotate(1.5707963267948966);
+    const double mass = rng.random(1.0, 4.0);
+    const calder::Vec2 position = calder::Vec2{5.0, 6.0} + direction;
+    EXPECT_EQ(bits(b.x[i]), bits(position.x)) << i;
+    EXPECT_EQ(bits(b.y[i]), bits(position.y)) << i;
+    EXPECT_EQ(bits(b.vx[i]), bits(velocity.x)) << i;
+    EXPECT_EQ(bits(b.vy[i]), bits(velocity.y)) << i;
+    EXPECT_EQ(bits(b.mass[i]), bits(mass)) << i;
+  }
+}
+
+TEST(SceneFile, InputScript) {
+  const Scene s = calder::parse_scene(R"(
+[input]
+mouse_pressed = [[100, 160], [200, 200]]
+mouse = [320, 120]
+moves = [{ frame = 130, position = [300, 100] }, { frame = 140, position = [10, 20] }]
+)",
+                                      "t.toml");
+  EXPECT_FALSE(s.input.pressed_at(99));
+  EXPECT_TRUE(s.input.pressed_at(100));
+  EXPECT_TRUE(s.input.pressed_at(160));
+  EXPECT_FALSE(s.input.pressed_at(161));
+  EXPECT_TRUE(s.input.pressed_at(200));
+  EXPECT_EQ(s.input.mouse_at(129), (calder::Vec2{320.0, 120.0}));
+  EXPECT_EQ(s.input.mouse_at(130), (calder::Vec2{300.0, 100.0}));
+  EXPECT_EQ(s.input.mouse_at(1000), (calder::Vec2{10.0, 20.0}));
+}
+
+// --- to_toml ------------------------------------------------------------------------------
+
+TEST(SceneFileToToml, NumbersRoundTripExactly) {
+  Scene s;
+  s.name = "numbers \"quoted\"\tand\\escaped\n";
+  const double values[] = {0.1,     -0.0,  1e-300,    123456789012345680000.0, 1e21,
+                           -2.5e-7, 640.0, 1.0 / 3.0, 9007199254740993.0,      -1e16};
+  for (const double v : values) {
+    calder::BodyGroup g;
+    g.x = calder::Draw::fixed(v);
+    g.y = calder::Draw::linear(v, v);
+    g.mass = calder::Draw::uniform(1.0 / 3.0, 5e-324 + 1.0);
+    s.bodies.push_back(g);
+  }
+  const std::string text = calder::to_toml(s);
+  const Scene back = calder::parse_scene(text, "t.toml");
+  EXPECT_EQ(back.name, s.name);
+  ASSERT_EQ(back.bodies.size(), std::size(values));
+  for (std::size_t i = 0; i < back.bodies.size(); ++i) {
+    EXPECT_EQ(bits(back.bodies[i].x.value), bits(values[i])) << values[i];
+    EXPECT_EQ(bits(back.bodies[i].y.value), bits(values[i])) << values[i];
+    EXPECT_EQ(bits(back.bodies[i].y.step), bits(values[i])) << values[i];
+  }
+  EXPECT_EQ(calder::to_toml(back), text);
+  EXPECT_EQ(text.find("nan"), std::string::npos);
+  EXPECT_THAT(text, HasSubstr("-0.0"));
+}
+
+TEST(SceneFileToToml, RefusesWhatAFileCantHold) {
+  Scene custom;
+  custom.fields.push_back(
+      {calder::CustomForce{[](const calder::FieldContext&, std::size_t) { return calder::Vec2{}; }},
+       {}});
+  EXPECT_THROW((void)calder::to_toml(custom), calder::Error);
+  Scene law;
+  law.fields.push_back({calder::Attractor{.law = calder::AttractionLaw::from(
+                                              [](double, double, double) { return 1.0; })},
+                        {}});
+  EXPECT_THROW((void)calder::to_toml(law), calder::Error);
+  Scene bad;
+  bad.world.dt = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_THROW((void)calder::to_toml(bad), calder::Error);
+}
+
+TEST(SceneFileToToml, EverythingRoundTrips) {
+  Scene s = calder::builtin_scene("example-2.4");
+  s.world.integrator = calder::Integrator::rk4;
+  s.world.dt = 0.5;
+  s.world.seed = 4294967295u;
+  s.world.boundary = calder::Boundary::wrap(true);
+  s.world.boundary.edges.top = false;
+  s.frames = 10'000'000;
+  s.on_press = calder::PressAction::reset;
+  s.origin = {1.5, -2.5};
+  s.input = press_script();
+  s.bodies.at(0).friction = 0.25;
+  s.bodies.at(0).drag_area = 2.0;
+  s.bodies.at(0).vx = calder::Draw::uniform(-1.0, 1.0);
+  s.fields.push_back(
+      {calder::Fan{.position = {1, 2}, .strength = 3, .reach = 4}, {.follow_mouse = true}});
+  s.fields.push_back({calder::Drag{.c = 0.5, .never_reverse = true, .enabled = false}, {}});
+  s.fields.push_back({calder::MutualAttraction{.law = calder::AttractionLaw::newtonian(2.0, 0.25),
+                                               .order = calder::PairOrder::by_source,
+                                               .central = calder::CentralBody{{3, 4}, 50}},
+                      {}});
+  s.fields.back().visible = false;
+  const std::string text = calder::to_toml(s);
+  const Scene back = calder::parse_scene(text, "t.toml");
+  EXPECT_EQ(calder::to_toml(back), text);
+  Simulation a(s, 1);
+  Simulation b(back, 1);
+  for (int i = 0; i < 200; ++i) {
+    a.step();
+    b.step();
+  }
+  EXPECT_EQ(calder::state_hash(a.world()), calder::state_hash(b.world()));
+}
+
+// --- docs/SCENES.md: every ```toml block is a scene that parses and runs ------------------
+
+TEST(SceneFileDocs, EveryExampleParsesAndRuns) {
+  const std::string path = std::string(CALDER_SOURCE_DIR) + "/docs/SCENES.md";
+  std::ifstream file(path);
+  ASSERT_TRUE(file.good()) << path;
+  std::string line;
+  int number = 0;
+  int start = 0;
+  bool inside = false;
+  std::string block;
+  int blocks = 0;
+  while (std::getline(file, line)) {
+    ++number;
+    if (!inside && line == "```toml") {
+      inside = true;
+      start = number + 1;
+      block.clear();
+    } else if (inside && line == "```") {
+      inside = false;
+      ++blocks;
+      const std::string where = path + ":" + std::to_string(start);
+      SCOPED_TRACE(where);
+      try {
+        const Scene s = calder::parse_scene(block, where);
+        Simulation sim(s, 1);
+        for (int i = 0; i < 10; ++i) sim.step();
+        EXPECT_EQ(calder::to_toml(calder::parse_scene(calder::to_toml(s), where)),
+                  calder::to_toml(s));
+      } catch (const calder::Error& e) {
+        ADD_FAILURE() << e.what();
+      }
+    } else if (inside) {
+      block += line;
+      block += '\n';
+    }
+  }
+  EXPECT_FALSE(inside) << "unterminated ```toml block at line " << start;
+  EXPECT_GE(blocks, 14);  // one per force at least
+}
+
+}  // namespace
