@@ -1,5 +1,6 @@
 #include "calder/fields.hpp"
 
+#include <atomic>
 #include <cmath>
 #include <string>
 
@@ -62,6 +63,8 @@ void accumulate_each(const FieldContext& c, std::size_t first, std::size_t last,
   for (std::size_t i = first; i < last; ++i) add_force(ax, ay, i, force_of(i), c.bodies.mass[i]);
 }
 
+std::atomic<MutualAttractionBackend> mutual_backend{nullptr};
+
 void accumulate_mutual(const MutualAttraction& f, const FieldContext& c, std::size_t first,
                        std::size_t last, std::span<double> ax, std::span<double> ay) {
   const BodyView& b = c.bodies;
@@ -72,6 +75,20 @@ void accumulate_mutual(const MutualAttraction& f, const FieldContext& c, std::si
               attraction(f.central->position, f.central->mass, b.position(i), b.mass[i], f.law),
               b.mass[i]);
   };
+  if (f.method != NBodyMethod::exact) {
+    if (first != 0 || last != n) {
+      throw Error("field mutual_attraction: the fast methods need the simultaneous update order");
+    }
+    const MutualAttractionBackend backend = mutual_backend.load();
+    if (backend == nullptr) {
+      throw Error(
+          "field mutual_attraction: method direct and barnes_hut need calder::nbody (link "
+          "calder::nbody and call calder::nbody::install())");
+    }
+    for (std::size_t i = 0; i < n; ++i) central_pulls(i);
+    backend(f, c, ax, ay);
+    return;
+  }
   if (first != 0 || last != n) {
     // A sub-range (sequential update): each target feels the central body,
     // then every other body in index order at its current position (example 2.9).
@@ -110,6 +127,8 @@ void accumulate_mutual(const MutualAttraction& f, const FieldContext& c, std::si
 }
 
 }  // namespace
+
+void set_mutual_attraction_backend(MutualAttractionBackend backend) { mutual_backend = backend; }
 
 const char* field_name(const Field& field) {
   return std::visit(Overloaded{
@@ -173,6 +192,20 @@ void validate(const Field& field) {
           },
           [&](const MutualAttraction& f) {
             f.law.validate(where);
+            if (!(f.theta >= 0.0 && f.theta <= 1.0)) {
+              throw Error(where_s + ": theta must be in [0, 1] (got " +
+                          detail::format_number(f.theta) + ")");
+            }
+            if (f.threads < 0) {
+              throw Error(where_s + ": threads must be >= 0 (got " + std::to_string(f.threads) +
+                          ")");
+            }
+            if (f.method != NBodyMethod::exact &&
+                (f.law.custom || f.law.exponent != 2.0 || f.law.repulsion != 0.0)) {
+              throw Error(where_s +
+                          ": the fast methods support the inverse-square law only (the book "
+                          "clamp, the squared clamp or Plummer softening)");
+            }
             if (f.central) {
               require_finite_vec(f.central->position, where, "central.position");
               detail::require_positive(f.central->mass, where, "central.mass");

@@ -21,12 +21,16 @@ void FixedStep::set_steps_per_second(double steps_per_second) {
 }
 
 int FixedStep::advance(World& world, double elapsed_seconds) {
+  return advance(elapsed_seconds, [&world] { world.step(); });
+}
+
+int FixedStep::advance(double elapsed_seconds, const std::function<void()>& step) {
   detail::require_non_negative(elapsed_seconds, "FixedStep::advance", "elapsed_seconds");
   const double step_seconds = 1.0 / steps_per_second_;
   accumulator_ += elapsed_seconds;
   int steps = 0;
   while (accumulator_ >= step_seconds && steps < max_steps_) {
-    world.step();
+    step();
     accumulator_ -= step_seconds;
     ++steps;
   }

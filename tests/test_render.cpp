@@ -3,7 +3,6 @@
 // giflib), atomic 0644 files, and errors.
 #include <cairo.h>
 #include <dirent.h>
-#include <dlfcn.h>
 #include <gif_lib.h>
 #include <gtest/gtest.h>
 #include <sys/stat.h>
@@ -26,18 +25,14 @@
 namespace {
 
 // Cairo's toy text API (the HUD and the legend) leaves fontconfig caches that
-// LeakSanitizer reports at exit (CI runs with detect_leaks=1). Release them
-// after all tests: Cairo's static data, then fontconfig's FcFini (looked up at
-// run time, since only Cairo links fontconfig).
-class ReleaseCairoStaticData : public ::testing::Environment {
+// LeakSanitizer reports at exit (CI runs with detect_leaks=1): release them
+// after all tests.
+class ReleaseRenderCaches : public ::testing::Environment {
  public:
-  void TearDown() override {
-    cairo_debug_reset_static_data();
-    if (void* fini = ::dlsym(RTLD_DEFAULT, "FcFini")) reinterpret_cast<void (*)()>(fini)();
-  }
+  void TearDown() override { calder::release_render_caches(); }
 };
-[[maybe_unused]] ::testing::Environment* const release_cairo_static_data =
-    ::testing::AddGlobalTestEnvironment(new ReleaseCairoStaticData);
+[[maybe_unused]] ::testing::Environment* const release_render_caches =
+    ::testing::AddGlobalTestEnvironment(new ReleaseRenderCaches);
 
 using calder::Canvas;
 using calder::Color;

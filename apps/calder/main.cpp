@@ -8,11 +8,14 @@
 //
 // Exit status: 0 success, 1 the run failed, 2 bad usage or bad input; every
 // error is one line on stderr, "calder: <message>".
+#include <calder/render.hpp>
 #include <iostream>
 
 #include "cli.hpp"
 
 int main(int argc, char** argv) {
   std::ios::sync_with_stdio(false);
-  return calder::app::main(argc, argv, std::cout, std::cerr);
+  const int status = calder::app::main(argc, argv, std::cout, std::cerr);
+  calder::release_render_caches();  // a clean exit for leak checkers
+  return status;
 }

@@ -103,8 +103,12 @@ InterruptGuard::InterruptGuard() {
   action.sa_handler = note_signal;
   sigemptyset(&action.sa_mask);
   action.sa_flags = 0;
-  ::sigaction(SIGINT, &action, &old_int_);
-  ::sigaction(SIGTERM, &action, &old_term_);
+  // A signal ignored when we started (nohup, a background job of a script)
+  // stays ignored.
+  ::sigaction(SIGINT, nullptr, &old_int_);
+  ::sigaction(SIGTERM, nullptr, &old_term_);
+  if (old_int_.sa_handler != SIG_IGN) ::sigaction(SIGINT, &action, nullptr);
+  if (old_term_.sa_handler != SIG_IGN) ::sigaction(SIGTERM, &action, nullptr);
 }
 
 InterruptGuard::~InterruptGuard() {

@@ -251,6 +251,7 @@ CLI::App* add_render_command(CLI::App& app, RenderOptions& options) {
   CLI::App* render = app.add_subcommand(
       "render", "Draw a scene headless to PNG frames (--png DIR) and/or an animated GIF (--gif)");
   add_input_options(*render, options.input);
+  render->get_option("--frames")->description("Frames to run, 0 to 100000 (default: the scene's)");
   render
       ->add_option("--every", options.every,
                    "Draw every K-th frame: frames 0, K, 2K, ... up to --frames (default 1)")

@@ -96,21 +96,6 @@ struct DestroyTexture {
   void operator()(SDL_Texture* t) const { SDL_DestroyTexture(t); }
 };
 
-// FixedStep paces a World; the window steps a Simulation (the mouse's
-// bindings), so FixedStep runs an empty world and tells how many frames are
-// due. (calder::FixedStep has no overload that runs a callback.)
-class Pacer {
- public:
-  explicit Pacer(double speed) : fixed_(kStepsPerSecond * speed, kMaxStepsPerFrame) {}
-  int due(double elapsed_seconds) { return fixed_.advance(clock_, elapsed_seconds); }
-  void set_speed(double speed) { fixed_.set_steps_per_second(kStepsPerSecond * speed); }
-  void reset() { fixed_.reset(); }
-
- private:
-  FixedStep fixed_;
-  World clock_;
-};
-
 // The running window: its state and what the keys do.
 class WindowApp {
  public:
@@ -125,7 +110,7 @@ class WindowApp {
         size_(canvas_size(std::nullopt, options.scale, input.scene)),
         canvas_(size_.width, size_.height, size_.scale),
         speed_(options.speed ? parse_speed(*options.speed) : 1.0),
-        pacer_(speed_),
+        pacer_(kStepsPerSecond * speed_, kMaxStepsPerFrame),
         scripted_(!options.input.mouse_pressed.empty() || options.input.mouse.has_value()) {
     if (options.input.frames) frame_limit_ = input.scene.frames;
     if (options.exit_after_seconds) exit_after_ = parse_seconds(*options.exit_after_seconds);
@@ -170,7 +155,7 @@ class WindowApp {
   CanvasSize size_;
   Canvas canvas_;
   double speed_;
-  Pacer pacer_;
+  FixedStep pacer_;
   bool scripted_;
   std::optional<std::int64_t> frame_limit_;
   std::optional<double> exit_after_;
@@ -242,7 +227,7 @@ void WindowApp::open() {
 void WindowApp::update_title() {
   std::string title = "calder: " + simulation_.scene().name;
   std::string state;
-  if (paused_) state += "paused";
+  if (paused_) state += "paused at frame " + std::to_string(simulation_.frame());
   if (speed_ != 1.0) {
     if (!state.empty()) state += ", ";
     state += "speed x" + format_number(speed_);
@@ -277,13 +262,17 @@ void WindowApp::run() {
       running_ = false;
     }
     if (running_ && !paused_) {
-      const int steps = pacer_.due(elapsed);
-      for (int k = 0; k < steps && !at_frame_limit(); ++k) step_once();
+      pacer_.advance(elapsed, [this] {
+        if (!at_frame_limit()) step_once();
+      });
     }
     if (at_frame_limit()) running_ = false;
     present();
-    if (!vsync_) {
-      // No vsync (the software renderer): wait out the rest of a display frame.
+    const bool hidden =
+        (SDL_GetWindowFlags(window_.get()) & (SDL_WINDOW_MINIMIZED | SDL_WINDOW_HIDDEN)) != 0;
+    if (!vsync_ || hidden) {
+      // No vsync (the software renderer), or nothing shown that would wait
+      // for it: wait out the rest of a display frame.
       const double spent = static_cast<double>(SDL_GetPerformanceCounter() - now) / frequency;
       const double wait = 1.0 / refresh_rate_ - spent;
       if (wait > 0.0) SDL_Delay(static_cast<Uint32>(wait * 1000.0));
@@ -343,7 +332,10 @@ void WindowApp::key(const SDL_KeyboardEvent& key) {
       break;
     case SDLK_PERIOD:
     case SDLK_KP_PERIOD:
-      if (paused_ && !at_frame_limit()) step_once();
+      if (paused_ && !at_frame_limit()) {
+        step_once();
+        update_title();
+      }
       break;
     case SDLK_r:
       if (repeat) break;
@@ -352,6 +344,7 @@ void WindowApp::key(const SDL_KeyboardEvent& key) {
       canvas_current_ = false;
       pending_press_ = false;
       pacer_.reset();
+      update_title();
       break;
     case SDLK_f:
       if (repeat) break;
@@ -373,13 +366,13 @@ void WindowApp::key(const SDL_KeyboardEvent& key) {
     case SDLK_EQUALS:
     case SDLK_KP_PLUS:
       speed_ = std::min(speed_ * 2.0, max_speed);
-      pacer_.set_speed(speed_);
+      pacer_.set_steps_per_second(kStepsPerSecond * speed_);
       update_title();
       break;
     case SDLK_MINUS:
     case SDLK_KP_MINUS:
       speed_ = std::max(speed_ / 2.0, min_speed);
-      pacer_.set_speed(speed_);
+      pacer_.set_steps_per_second(kStepsPerSecond * speed_);
       update_title();
       break;
     default:
@@ -538,6 +531,8 @@ CLI::App* add_window_command(CLI::App& app, WindowOptions& options) {
   CLI::App* window = app.add_subcommand(
       "window", "Run a scene in a window in real time, with the mouse (needs a display)");
   add_input_options(*window, options.input);
+  window->get_option("--frames")
+      ->description("Close the window after N steps, 0 to 10000000 (default: run until quit)");
   window
       ->add_option("--scale", options.scale,
                    "Window pixels per canvas pixel, in (0, 8] (default 1)")

@@ -188,12 +188,36 @@ struct CentralBody {
 // simultaneously all forces come from one state (see PairOrder). In a world
 // updated sequentially (example 2.9), body i feels all others at their current
 // positions, including the ones already moved this step.
+// How mutual attraction is summed.
+enum class NBodyMethod {
+  // The core's loops in the order PairOrder sets: bit-faithful to the book's
+  // sketches, Newton's third law exact. Any law.
+  exact,
+  // The same O(n^2) sum by calder::nbody's vectorised, threaded kernels
+  // (different last bits; the book clamp, the squared clamp or Plummer).
+  direct,
+  // O(n log n) on a quadtree (calder::nbody), approximate: see theta.
+  barnes_hut,
+};
+
 struct MutualAttraction {
   AttractionLaw law{};
   PairOrder order = PairOrder::pairwise;
   std::optional<CentralBody> central = std::nullopt;
+  NBodyMethod method = NBodyMethod::exact;
+  double theta = 0.5;             // barnes_hut: opening angle in [0, 1]
+  bool single_precision = false;  // direct, barnes_hut: pair sums in float32
+  int threads = 0;                // direct, barnes_hut: 0 = every core
   bool enabled = true;
 };
+
+// The fast methods (NBodyMethod::direct, barnes_hut) live in calder::nbody,
+// which needs OpenMP; the core stays dependency-free. calder::nbody::install()
+// registers them here; a step that asks for them without it throws
+// calder::Error. The backend adds the pair accelerations of all bodies.
+using MutualAttractionBackend = void (*)(const MutualAttraction& field, const FieldContext& context,
+                                         std::span<double> ax, std::span<double> ay);
+void set_mutual_attraction_backend(MutualAttractionBackend backend);
 
 // Any force of the user's: called once per body, returns the force on body i.
 using CustomForceFunction =

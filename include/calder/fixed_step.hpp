@@ -7,6 +7,8 @@
 // the leftover time is into the next step, for drawing in between.
 #pragma once
 
+#include <functional>
+
 namespace calder {
 
 class World;
@@ -21,6 +23,9 @@ class FixedStep {
   // Adds elapsed_seconds (>= 0) of real time and steps the world; returns the
   // number of steps taken.
   int advance(World& world, double elapsed_seconds);
+  // The same for anything that steps: calls step() once per step due (a
+  // Simulation, so that its mouse bindings run every step).
+  int advance(double elapsed_seconds, const std::function<void()>& step);
 
   // Fraction of a step in the carried-over time, in [0, 1).
   [[nodiscard]] double alpha() const { return accumulator_ * steps_per_second_; }

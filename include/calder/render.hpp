@@ -234,4 +234,10 @@ class GifWriter {
   std::unique_ptr<Impl> impl_;
 };
 
+// Frees what Cairo and fontconfig keep for the process's lifetime (text is
+// drawn with Cairo's toy font API). Call it once at exit, when no Canvas is
+// left, so leak checkers see a clean exit; drawing text afterwards is not
+// allowed.
+void release_render_caches();
+
 }  // namespace calder

@@ -131,6 +131,32 @@ struct Lists {
   std::vector<T> ty;
 };
 
+// A tree, or a part of one built on its own (the parallel build).
+struct Tree {
+  std::vector<Node> nodes;
+  std::vector<Moments> moments;
+  std::vector<std::uint32_t> groups;  // nodes whose bodies share a walk
+  int depth = 0;
+  std::size_t leaves = 0;
+
+  void reset() {
+    nodes.assign(1, Node{});
+    moments.assign(1, Moments{});
+    groups.clear();
+    depth = 0;
+    leaves = 0;
+  }
+};
+
+// A subtree left for the parallel build: its root's index in the whole tree,
+// its bodies and its depth.
+struct Pending {
+  std::uint32_t index = 0;
+  std::uint32_t begin = 0;
+  std::uint32_t end = 0;
+  int depth = 0;
+};
+
 using Clock = std::chrono::steady_clock;
 
 double seconds_since(Clock::time_point t0) {
@@ -152,19 +178,19 @@ struct BarnesHut::Workspace {
   std::vector<double> sy;
   std::vector<double> sm;
   std::vector<float> sm32;  // scaled masses, float32
-  std::vector<Node> nodes;
-  std::vector<Moments> moments;
-  std::vector<double> node64;  // kMoments per node, as the float64 kernels read them
-  std::vector<float> node32;   // the same scaled for float32
-  std::vector<std::uint32_t> groups;
-  double x0 = 0.0;  // the root square [x0, x0 + side) x [y0, y0 + side)
+  Tree tree;
+  std::vector<Tree> parts;         // the subtrees, built in parallel
+  std::vector<Pending> pending;    // their roots
+  std::vector<std::uint32_t> top;  // the nodes above them, in creation order
+  std::vector<double> node64;      // kMoments per node, as the float64 kernels read them
+  std::vector<float> node32;       // the same scaled for float32
+  double x0 = 0.0;                 // the root square [x0, x0 + side) x [y0, y0 + side)
   double y0 = 0.0;
   double side = 1.0;
   double max_mass = 0.0;
   double inv_theta = 0.0;  // 1 / theta, +inf for theta = 0
   std::size_t leaf_size = 1;
   std::size_t group_size = 1;
-  int depth = 0;
 
   // Walk: sums in Morton order, and each thread's lists.
   std::vector<double> sum_x;
@@ -180,8 +206,15 @@ struct BarnesHut::Workspace {
 
   void sort_bodies(std::span<const double> x, std::span<const double> y,
                    std::span<const double> mass, int threads);
-  void build_node(std::uint32_t index, std::uint32_t begin, std::uint32_t end, int tree_depth,
-                  bool in_group);
+  void build_tree(int threads);
+  int level_of(std::uint32_t begin, std::uint32_t end) const;
+  std::uint32_t split(Tree& t, std::uint32_t index, std::uint32_t begin, std::uint32_t end,
+                      int level, std::uint32_t (&bounds)[5]) const;
+  void plan(std::uint32_t index, std::uint32_t begin, std::uint32_t end, int tree_depth,
+            std::size_t cutoff);
+  void build_node(Tree& t, std::uint32_t index, std::uint32_t begin, std::uint32_t end,
+                  int tree_depth, bool in_group) const;
+  void finish_node(Tree& t, std::uint32_t index) const;
   template <typename T>
   void walk_group(std::uint32_t group, Scratch& s, const detail::KernelTable& k,
                   const detail::LawParams& p, double scale);
@@ -190,11 +223,29 @@ struct BarnesHut::Workspace {
 void BarnesHut::Workspace::sort_bodies(std::span<const double> x, std::span<const double> y,
                                        std::span<const double> mass, int threads) {
   const std::size_t n = x.size();
-  const auto [xmin, xmax] = std::minmax_element(x.begin(), x.end());
-  const auto [ymin, ymax] = std::minmax_element(y.begin(), y.end());
-  x0 = *xmin;
-  y0 = *ymin;
-  side = std::max(*xmax - *xmin, *ymax - *ymin);
+  // Small inputs are not worth waking threads for.
+  const int team = n < 50000 ? 1 : threads;
+  double xmin = x[0];
+  double xmax = x[0];
+  double ymin = y[0];
+  double ymax = y[0];
+  const auto count = static_cast<std::ptrdiff_t>(n);
+#if defined(_OPENMP)
+#pragma omp parallel for schedule(static) num_threads(team) reduction(min           \
+                                                                      : xmin, ymin) \
+    reduction(max                                                                   \
+              : xmax, ymax)
+#endif
+  for (std::ptrdiff_t i = 0; i < count; ++i) {
+    const auto u = static_cast<std::size_t>(i);
+    xmin = std::min(xmin, x[u]);
+    xmax = std::max(xmax, x[u]);
+    ymin = std::min(ymin, y[u]);
+    ymax = std::max(ymax, y[u]);
+  }
+  x0 = xmin;
+  y0 = ymin;
+  side = std::max(xmax - xmin, ymax - ymin);
   if (!(side > 0.0)) side = 1.0;  // one point (or one body)
   const double to_cell = static_cast<double>(kCells) / side;
   const auto quantise = [&](double v, double origin) {
@@ -209,8 +260,6 @@ void BarnesHut::Workspace::sort_bodies(std::span<const double> x, std::span<cons
   sx.resize(n);
   sy.resize(n);
   sm.resize(n);
-  // Small inputs are not worth waking threads for.
-  const int team = n < 50000 ? 1 : threads;
   radix_counts.assign(static_cast<std::size_t>(team) * kRadixBuckets, 0);
   bool skip = false;
   double heaviest = 0.0;
@@ -289,38 +338,113 @@ void BarnesHut::Workspace::sort_bodies(std::span<const double> x, std::span<cons
   max_mass = heaviest;
 }
 
-// Builds node `index` over the bodies [begin, end) (end > begin): its cell is
-// the smallest quadtree cell that holds them all (chains of single children
-// are skipped), split into its non-empty quadrants unless it has at most
-// leaf_size bodies or they all share one Morton code.
-void BarnesHut::Workspace::build_node(std::uint32_t index, std::uint32_t begin, std::uint32_t end,
-                                      int tree_depth, bool in_group) {
+// The number of quadtree levels that the bodies [begin, end) share: their
+// node's cell is the smallest one holding them all (chains of single
+// children are skipped); kBits when they all share one Morton code.
+int BarnesHut::Workspace::level_of(std::uint32_t begin, std::uint32_t end) const {
   const std::uint64_t first = keys[begin];
   const std::uint64_t last = keys[end - 1];
-  const int level = first == last ? kBits : (leading_zeros(first ^ last) - (64 - 2 * kBits)) / 2;
-  depth = std::max(depth, tree_depth);
+  return first == last ? kBits : (leading_zeros(first ^ last) - (64 - 2 * kBits)) / 2;
+}
+
+// Splits node `index` of t (bodies [begin, end), common prefix `level`) into
+// its non-empty quadrants, appended to t as contiguous children; returns how
+// many. bounds: the quadrants' body ranges.
+std::uint32_t BarnesHut::Workspace::split(Tree& t, std::uint32_t index, std::uint32_t begin,
+                                          std::uint32_t end, int level,
+                                          std::uint32_t (&bounds)[5]) const {
+  // The quadrant digit below the common prefix: bits 2 (kBits - 1 - level) + {0, 1}.
+  const int shift = 2 * (kBits - 1 - level);
+  bounds[0] = begin;
+  for (std::uint64_t d = 1; d < 4; ++d) {
+    bounds[d] = static_cast<std::uint32_t>(
+        std::partition_point(keys.begin() + bounds[d - 1], keys.begin() + end,
+                             [&](std::uint64_t key) { return ((key >> shift) & 3u) < d; }) -
+        keys.begin());
+  }
+  bounds[4] = end;
+  std::uint32_t children = 0;
+  for (int q = 0; q < 4; ++q) children += bounds[q + 1] > bounds[q] ? 1 : 0;
+  Node& node = t.nodes[index];
+  node.begin = begin;
+  node.end = end;
+  node.child = static_cast<std::uint32_t>(t.nodes.size());
+  node.children = children;
+  t.nodes.resize(t.nodes.size() + children);
+  t.moments.resize(t.nodes.size());
+  return children;
+}
+
+// The top of the tree, serially: nodes with more than `cutoff` bodies are
+// split here; the others are left in `pending` for the parallel build. The
+// cutoff depends on the number of bodies only, so the tree does not depend
+// on the number of threads.
+void BarnesHut::Workspace::plan(std::uint32_t index, std::uint32_t begin, std::uint32_t end,
+                                int tree_depth, std::size_t cutoff) {
+  const int level = level_of(begin, end);
+  if (end - begin <= cutoff || level == kBits) {
+    pending.push_back(Pending{index, begin, end, tree_depth});
+    return;
+  }
+  top.push_back(index);
+  std::uint32_t bounds[5];
+  split(tree, index, begin, end, level, bounds);
+  std::uint32_t c = tree.nodes[index].child;
+  for (int q = 0; q < 4; ++q) {
+    if (bounds[q + 1] > bounds[q]) plan(c++, bounds[q], bounds[q + 1], tree_depth + 1, cutoff);
+  }
+}
+
+// Builds node `index` of t over the bodies [begin, end) (end > begin) and its
+// subtree: split unless it has at most leaf_size bodies or they all share one
+// Morton code. The first node on each path with at most group_size bodies
+// (or a leaf) is a group.
+void BarnesHut::Workspace::build_node(Tree& t, std::uint32_t index, std::uint32_t begin,
+                                      std::uint32_t end, int tree_depth, bool in_group) const {
+  const int level = level_of(begin, end);
+  t.depth = std::max(t.depth, tree_depth);
   const std::size_t count = end - begin;
-  const bool leaf = count <= leaf_size || first == last;
+  const bool leaf = count <= leaf_size || level == kBits;
   if (!in_group && (count <= group_size || leaf)) {
-    groups.push_back(index);
+    t.groups.push_back(index);
     in_group = true;
   }
+  if (leaf) {
+    ++t.leaves;
+    Node& node = t.nodes[index];
+    node.begin = begin;
+    node.end = end;
+    node.child = 0;
+    node.children = 0;
+  } else {
+    std::uint32_t bounds[5];
+    split(t, index, begin, end, level, bounds);  // reserved capacity: no reallocation
+    std::uint32_t c = t.nodes[index].child;
+    for (int q = 0; q < 4; ++q) {
+      if (bounds[q + 1] > bounds[q])
+        build_node(t, c++, bounds[q], bounds[q + 1], tree_depth + 1, in_group);
+    }
+  }
+  finish_node(t, index);
+}
 
+// Mass, centre of mass and moments of node `index` of t (from its bodies, or
+// from its children, which must be finished), and its opening radius.
+void BarnesHut::Workspace::finish_node(Tree& t, std::uint32_t index) const {
+  Node& node = t.nodes[index];
   double mass = 0.0;
   double mx = 0.0;
   double my = 0.0;
   Moments mo;
-  std::uint32_t child = 0;
-  std::uint32_t children = 0;
-  if (leaf) {
-    for (std::uint32_t b = begin; b < end; ++b) {
+  if (node.children == 0) {
+    for (std::uint32_t b = node.begin; b < node.end; ++b) {
       mass += sm[b];
       mx += sm[b] * sx[b];
       my += sm[b] * sy[b];
     }
     mx /= mass;
     my /= mass;
-    for (std::uint32_t b = begin; b < end; ++b) {
+    for (std::uint32_t b = node.begin; b < node.end; ++b) {
       const double dx = sx[b] - mx;
       const double dy = sy[b] - my;
       const double m = sm[b];
@@ -333,39 +457,21 @@ void BarnesHut::Workspace::build_node(std::uint32_t index, std::uint32_t begin, 
       mo.oyyy += m * dy * dy * dy;
     }
   } else {
-    // The quadrant digit below the common prefix: bits 2 (kBits - 1 - level) + {0, 1}.
-    const int shift = 2 * (kBits - 1 - level);
-    std::uint32_t bounds[5];
-    bounds[0] = begin;
-    for (std::uint64_t d = 1; d < 4; ++d) {
-      bounds[d] = static_cast<std::uint32_t>(
-          std::partition_point(keys.begin() + bounds[d - 1], keys.begin() + end,
-                               [&](std::uint64_t key) { return ((key >> shift) & 3u) < d; }) -
-          keys.begin());
-    }
-    bounds[4] = end;
-    child = static_cast<std::uint32_t>(nodes.size());
-    for (int q = 0; q < 4; ++q) children += bounds[q + 1] > bounds[q] ? 1 : 0;
-    nodes.resize(nodes.size() + children);  // within the reserved capacity: no reallocation
-    moments.resize(nodes.size());
-    std::uint32_t c = child;
-    for (int q = 0; q < 4; ++q) {
-      if (bounds[q + 1] > bounds[q])
-        build_node(c++, bounds[q], bounds[q + 1], tree_depth + 1, in_group);
-    }
-    for (c = child; c < child + children; ++c) {
-      mass += moments[c].mass;
-      mx += moments[c].mass * nodes[c].mx;
-      my += moments[c].mass * nodes[c].my;
+    const std::uint32_t first = node.child;
+    const std::uint32_t last = node.child + node.children;
+    for (std::uint32_t c = first; c < last; ++c) {
+      mass += t.moments[c].mass;
+      mx += t.moments[c].mass * t.nodes[c].mx;
+      my += t.moments[c].mass * t.nodes[c].my;
     }
     mx /= mass;
     my /= mass;
-    for (c = child; c < child + children; ++c) {
+    for (std::uint32_t c = first; c < last; ++c) {
       // The child's moments about this centre of mass, the child's centre at
       // offset (dx, dy): s = d + s', sum m s' = 0.
-      const Moments& m = moments[c];
-      const double dx = nodes[c].mx - mx;
-      const double dy = nodes[c].my - my;
+      const Moments& m = t.moments[c];
+      const double dx = t.nodes[c].mx - mx;
+      const double dy = t.nodes[c].my - my;
       mo.qxx += m.qxx + m.mass * dx * dx;
       mo.qxy += m.qxy + m.mass * dx * dy;
       mo.qyy += m.qyy + m.mass * dy * dy;
@@ -375,31 +481,91 @@ void BarnesHut::Workspace::build_node(std::uint32_t index, std::uint32_t begin, 
       mo.oyyy += m.oyyy + 3.0 * dy * m.qyy + m.mass * dy * dy * dy;
     }
   }
+  mo.mass = mass;
+  t.moments[index] = mo;
 
   // The cell: level `level` of the root square, found from the common prefix.
+  const int level = level_of(node.begin, node.end);
+  const std::uint64_t key = keys[node.begin];
   const double size = std::ldexp(side, -level);
-  const double cx = x0 + (static_cast<double>(compact(first) >> (kBits - level)) + 0.5) * size;
-  const double cy = y0 + (static_cast<double>(compact(first >> 1) >> (kBits - level)) + 0.5) * size;
+  const double cx = x0 + (static_cast<double>(compact(key) >> (kBits - level)) + 0.5) * size;
+  const double cy = y0 + (static_cast<double>(compact(key >> 1) >> (kBits - level)) + 0.5) * size;
   const double delta = std::sqrt((mx - cx) * (mx - cx) + (my - cy) * (my - cy));
   const double open = size * inv_theta + delta;
-
-  Node& node = nodes[index];
   node.mx = mx;
   node.my = my;
   node.open2 = open * open;
-  node.begin = begin;
-  node.end = end;
-  node.child = child;
-  node.children = children;
-  mo.mass = mass;
-  moments[index] = mo;
+}
+
+// The whole tree: its top serially (plan), the subtrees below in parallel
+// (each in its own Tree, numbered from 0), then the subtrees' nodes appended
+// in a fixed order and the top finished bottom up.
+void BarnesHut::Workspace::build_tree(int threads) {
+  const auto n = static_cast<std::uint32_t>(keys.size());
+  tree.reset();
+  tree.nodes.reserve(2 * std::size_t{n});  // every inner node has >= 2 children: < 2n nodes
+  tree.moments.reserve(2 * std::size_t{n});
+  pending.clear();
+  top.clear();
+  // About 64 subtrees for large inputs, and never a group or a leaf above them.
+  const std::size_t cutoff = n < 50000 ? n : std::max({std::size_t{n} / 64, group_size, leaf_size});
+  plan(0, 0, n, 0, cutoff);
+  const int team = n < 50000 ? 1 : threads;
+
+  if (parts.size() < pending.size()) parts.resize(pending.size());
+  const auto count = static_cast<std::ptrdiff_t>(pending.size());
+#if defined(_OPENMP)
+#pragma omp parallel for schedule(dynamic, 1) num_threads(team)
+#endif
+  for (std::ptrdiff_t k = 0; k < count; ++k) {
+    const Pending& p = pending[static_cast<std::size_t>(k)];
+    Tree& part = parts[static_cast<std::size_t>(k)];
+    part.reset();
+    part.nodes.reserve(2 * std::size_t{p.end - p.begin});
+    part.moments.reserve(2 * std::size_t{p.end - p.begin});
+    build_node(part, 0, p.begin, p.end, p.depth, false);
+  }
+
+  // Part k's node c goes to its root's slot (c = 0) or to offset[k] + c - 1.
+  std::vector<std::size_t> offset(pending.size() + 1);
+  offset[0] = tree.nodes.size();
+  for (std::size_t k = 0; k < pending.size(); ++k) {
+    offset[k + 1] = offset[k] + parts[k].nodes.size() - 1;
+    tree.depth = std::max(tree.depth, parts[k].depth);
+    tree.leaves += parts[k].leaves;
+  }
+  tree.nodes.resize(offset.back());
+  tree.moments.resize(offset.back());
+#if defined(_OPENMP)
+#pragma omp parallel for schedule(dynamic, 1) num_threads(team)
+#endif
+  for (std::ptrdiff_t k = 0; k < count; ++k) {
+    const auto u = static_cast<std::size_t>(k);
+    const Tree& part = parts[u];
+    const std::uint32_t root = pending[u].index;
+    const auto base = static_cast<std::uint32_t>(offset[u]);
+    for (std::size_t c = 0; c < part.nodes.size(); ++c) {
+      Node node = part.nodes[c];
+      if (node.children > 0) node.child = base + node.child - 1;
+      const std::size_t to = c == 0 ? root : base + c - 1;
+      tree.nodes[to] = node;
+      tree.moments[to] = part.moments[c];
+    }
+  }
+  for (std::size_t k = 0; k < pending.size(); ++k) {
+    const auto base = static_cast<std::uint32_t>(offset[k]);
+    for (const std::uint32_t g : parts[k].groups) {
+      tree.groups.push_back(g == 0 ? pending[k].index : base + g - 1);
+    }
+  }
+  for (auto it = top.rbegin(); it != top.rend(); ++it) finish_node(tree, *it);
 }
 
 template <typename T>
 void BarnesHut::Workspace::walk_group(std::uint32_t group, Scratch& s, const detail::KernelTable& k,
                                       const detail::LawParams& p, double scale) {
   constexpr bool kFloat = sizeof(T) == 4;
-  const Node& g = nodes[group];
+  const Node& g = tree.nodes[group];
   const std::uint32_t begin = g.begin;
   const std::uint32_t end = g.end;
   double gx0 = sx[begin];
@@ -439,7 +605,7 @@ void BarnesHut::Workspace::walk_group(std::uint32_t group, Scratch& s, const det
   while (!s.stack.empty()) {
     const std::uint32_t index = s.stack.back();
     s.stack.pop_back();
-    const Node& n = nodes[index];
+    const Node& n = tree.nodes[index];
     const double dx = std::max(std::max(gx0 - n.mx, n.mx - gx1), 0.0);
     const double dy = std::max(std::max(gy0 - n.my, n.my - gy1), 0.0);
     if (dx * dx + dy * dy > n.open2) {
@@ -499,6 +665,8 @@ void BarnesHut::Workspace::walk_group(std::uint32_t group, Scratch& s, const det
   }
   double* out_x = sum_x.data() + begin;
   double* out_y = sum_y.data() + begin;
+  std::fill(out_x, out_x + count, 0.0);
+  std::fill(out_y, out_y + count, 0.0);
   detail::Nodes<T> node_list;
   for (std::size_t c = 0; c < detail::Nodes<T>::kColumns; ++c) node_list.column[c] = accepted[c];
   node_list.n = accepted.size;
@@ -553,29 +721,26 @@ void BarnesHut::accelerations(std::span<const double> x, std::span<const double>
   w.group_size = static_cast<std::size_t>(options.group_size);
   w.inv_theta = options.theta > 0.0 ? 1.0 / options.theta : std::numeric_limits<double>::infinity();
   w.sort_bodies(x, y, mass, threads);
-  w.nodes.clear();
-  w.nodes.reserve(2 * n);  // every inner node has >= 2 children: < 2n nodes
-  w.nodes.emplace_back();
-  w.moments.clear();
-  w.moments.reserve(2 * n);
-  w.moments.emplace_back();
-  w.groups.clear();
-  w.depth = 0;
-  w.build_node(0, 0, static_cast<std::uint32_t>(n), 0, false);
+  w.build_tree(threads);
 
   // The kernels' inputs: per-node moments and per-body masses in the precision used.
   const detail::FloatFrame frame = detail::float_frame(w.x0 + w.side * 0.5, w.y0 + w.side * 0.5,
                                                        w.side * 0.5, w.max_mass, options.G);
   const detail::LawParams p = detail::law_params(options, frame);
   const bool f32 = options.precision == Precision::float32;
-  const std::size_t node_count = w.nodes.size();
+  const std::size_t node_count = w.tree.nodes.size();
   const double q_scale = f32 ? frame.scale * frame.scale * frame.mass_scale : 1.0;
   const double m_scale = f32 ? frame.mass_scale : 1.0;
   const double o_scale = q_scale * (f32 ? frame.scale : 1.0);
+  const int team = n < 2000 ? 1 : threads;  // small trees: not worth waking threads
   const auto fill_moments = [&](auto* out) {
     using T = std::remove_pointer_t<decltype(out)>;
-    for (std::size_t i = 0; i < node_count; ++i) {
-      const Moments& m = w.moments[i];
+#if defined(_OPENMP)
+#pragma omp parallel for schedule(static) num_threads(team)
+#endif
+    for (std::ptrdiff_t node = 0; node < static_cast<std::ptrdiff_t>(node_count); ++node) {
+      const auto i = static_cast<std::size_t>(node);
+      const Moments& m = w.tree.moments[i];
       T* o = out + i * kMoments;
       o[0] = static_cast<T>(m.mass * m_scale);
       o[1] = static_cast<T>(3.0 * m.qxx * q_scale);
@@ -594,7 +759,13 @@ void BarnesHut::accelerations(std::span<const double> x, std::span<const double>
     w.node32.resize(node_count * kMoments);
     fill_moments(w.node32.data());
     w.sm32.resize(n);
-    for (std::size_t r = 0; r < n; ++r) w.sm32[r] = static_cast<float>(w.sm[r] * m_scale);
+#if defined(_OPENMP)
+#pragma omp parallel for schedule(static) num_threads(team)
+#endif
+    for (std::ptrdiff_t r = 0; r < static_cast<std::ptrdiff_t>(n); ++r) {
+      const auto u = static_cast<std::size_t>(r);
+      w.sm32[u] = static_cast<float>(w.sm[u] * m_scale);
+    }
   } else {
     w.node64.resize(node_count * kMoments);
     fill_moments(w.node64.data());
@@ -604,13 +775,12 @@ void BarnesHut::accelerations(std::span<const double> x, std::span<const double>
   // Walk.
   const Clock::time_point t1 = Clock::now();
   const detail::KernelTable& k = detail::kernels();
-  w.sum_x.assign(n, 0.0);
-  w.sum_y.assign(n, 0.0);
+  w.sum_x.resize(n);  // zeroed group by group in the walk
+  w.sum_y.resize(n);
   w.scratch.resize(static_cast<std::size_t>(threads));
   for (auto& s : w.scratch) s.interactions = s.node_interactions = 0;
-  const auto groups = static_cast<std::ptrdiff_t>(w.groups.size());
+  const auto groups = static_cast<std::ptrdiff_t>(w.tree.groups.size());
   const double factor = f32 ? frame.factor : options.G;
-  const int team = n < 2000 ? 1 : threads;  // small trees: not worth waking threads
 #if defined(_OPENMP)
 #pragma omp parallel num_threads(team)
 #endif
@@ -622,7 +792,7 @@ void BarnesHut::accelerations(std::span<const double> x, std::span<const double>
     Workspace::Scratch& s = w.scratch[0];
 #endif
     for (std::ptrdiff_t g = 0; g < groups; ++g) {
-      const std::uint32_t group = w.groups[static_cast<std::size_t>(g)];
+      const std::uint32_t group = w.tree.groups[static_cast<std::size_t>(g)];
       if (f32) {
         w.walk_group<float>(group, s, k, p, frame.scale);
       } else {
@@ -642,9 +812,9 @@ void BarnesHut::accelerations(std::span<const double> x, std::span<const double>
   w.stats.walk_seconds = seconds_since(t1);
 
   w.stats.nodes = node_count;
-  w.stats.groups = w.groups.size();
-  w.stats.depth = w.depth;
-  for (const Node& node : w.nodes) w.stats.leaves += node.children == 0 ? 1 : 0;
+  w.stats.groups = w.tree.groups.size();
+  w.stats.depth = w.tree.depth;
+  w.stats.leaves = w.tree.leaves;
   for (const auto& s : w.scratch) {
     w.stats.interactions += s.interactions;
     w.stats.node_interactions += s.node_interactions;

@@ -1,5 +1,6 @@
 // calder render: drawing a world into a Cairo image, and PNG output.
 #include <cairo.h>
+#include <dlfcn.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -539,6 +540,12 @@ void Canvas::write_png(const std::string& path) const {
                 "': " + cairo_status_to_string(status));
   }
   file.commit();
+}
+
+void release_render_caches() {
+  cairo_debug_reset_static_data();
+  // fontconfig is Cairo's dependency, not ours: look FcFini up at run time.
+  if (void* fini = ::dlsym(RTLD_DEFAULT, "FcFini")) reinterpret_cast<void (*)()>(fini)();
 }
 
 }  // namespace calder

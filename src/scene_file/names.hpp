@@ -77,6 +77,12 @@ inline constexpr std::array<Choice<PairOrder>, 2> kPairOrders{{
     {"by_source", PairOrder::by_source},
 }};
 
+inline constexpr std::array<Choice<NBodyMethod>, 3> kNBodyMethods{{
+    {"exact", NBodyMethod::exact},
+    {"direct", NBodyMethod::direct},
+    {"barnes_hut", NBodyMethod::barnes_hut},
+}};
+
 // The name of an enumerator (empty if the table lacks it, which a complete
 // table never does).
 template <class E, std::size_t N>

@@ -45,6 +45,7 @@ using scene_file_detail::kClamps;
 using scene_file_detail::kEdges;
 using scene_file_detail::kIntegrators;
 using scene_file_detail::kLayouts;
+using scene_file_detail::kNBodyMethods;
 using scene_file_detail::kPairOrders;
 using scene_file_detail::kPressActions;
 using scene_file_detail::kProducts;
@@ -764,10 +765,16 @@ SceneField Reader::field(const toml::table& t) const {
     if (const toml::node* n = f.find("law")) a.law = law(*n, "attractor");
     out.field = a;
   } else {  // mutual_attraction
-    allow({"law", "order", "central"});
+    allow({"law", "order", "central", "method", "theta", "single_precision", "threads"});
     MutualAttraction m;
     if (const toml::node* n = f.find("law")) m.law = law(*n, "mutual_attraction");
     m.order = f.choice("order", kPairOrders, m.order);
+    m.method = f.choice("method", kNBodyMethods, m.method);
+    m.theta = f.number("theta", m.theta, Check::non_negative);
+    m.single_precision = f.boolean("single_precision", m.single_precision);
+    if (const toml::node* n = f.find("threads")) {
+      m.threads = static_cast<int>(integer(*n, "threads", 0, 1024));
+    }
     if (const toml::node* n = f.find("central")) {
       const Tbl c(*this, table_of(*n, "central", "an inline table { position = [x, y], mass = m }"),
                   "'central'", "central.");

@@ -31,6 +31,7 @@ using scene_file_detail::kClamps;
 using scene_file_detail::kEdges;
 using scene_file_detail::kIntegrators;
 using scene_file_detail::kLayouts;
+using scene_file_detail::kNBodyMethods;
 using scene_file_detail::kPairOrders;
 using scene_file_detail::kPressActions;
 using scene_file_detail::kProducts;
@@ -238,6 +239,12 @@ void write_field(Writer& w, const SceneField& sf) {
                  [&](const MutualAttraction& f) {
                    w.line("law", law(f.law));
                    w.line("order", str(name_of(kPairOrders, f.order)));
+                   if (f.method != NBodyMethod::exact) {
+                     w.line("method", str(name_of(kNBodyMethods, f.method)));
+                     w.line("theta", num(f.theta));
+                     w.line("single_precision", boolean(f.single_precision));
+                     w.line("threads", std::to_string(f.threads));
+                   }
                    if (f.central) {
                      w.line("central", cat("{ position = ", vec(f.central->position),
                                            ", mass = ", num(f.central->mass), " }"));
