@@ -14,6 +14,8 @@
 #include <system_error>
 #include <utility>
 
+#include <calder/error.hpp>
+
 #include "errors.hpp"
 
 namespace calder::app {
@@ -45,8 +47,6 @@ void unwatch_signals() {
   std::signal(SIGTERM, SIG_DFL);
 }
 
-std::string error_text(int error) { return std::strerror(error); }
-
 }  // namespace
 
 OutputFile::OutputFile(std::string path) : path_(std::move(path)) {
@@ -64,33 +64,14 @@ OutputFile::OutputFile(std::string path) : path_(std::move(path)) {
     throw InputError(path_ + ": cannot create the file: directory '" + directory.string() +
                      "' does not exist");
   }
-  // (Appended piece by piece: GCC 12 warns falsely (-Wrestrict) on "." + name + ...)
-  std::string temp_name = ".";
-  temp_name += target.filename().string();
-  temp_name += ".tmp-XXXXXX";
-  std::string pattern = (directory / temp_name).string();
-  const int fd = ::mkstemp(pattern.data());
-  if (fd < 0) {
-    const int error = errno;
-    throw InputError(path_ + ": cannot create the file: " + error_text(error));
+  try {
+    file_.emplace("calder", path_);
+  } catch (const calder::Error& e) {
+    throw InputError(e.what());
   }
-  temp_path_ = pattern;
-  watch_signals(temp_path_);
-  // mkstemp makes the file private (0600); give it the mode a new file gets.
-  const mode_t mask = ::umask(0);
-  ::umask(mask);
-  const mode_t mode = static_cast<mode_t>(0666) & ~mask;
-  (void)::fchmod(fd, mode);
-  ::close(fd);
-
-  buffer_.resize(std::size_t{1} << 16);
-  file_.rdbuf()->pubsetbuf(buffer_.data(), static_cast<std::streamsize>(buffer_.size()));
-  file_.open(temp_path_, std::ios::binary | std::ios::trunc);
-  if (!file_) {
-    const int error = errno;
-    discard();
-    throw InputError(path_ + ": cannot create the file: " + error_text(error));
-  }
+  watch_signals(file_->temp_path());
+  buffer_ = std::make_unique<Buffer>(*file_);
+  out_ = std::make_unique<std::ostream>(buffer_.get());
 }
 
 OutputFile::~OutputFile() {
@@ -99,7 +80,7 @@ OutputFile::~OutputFile() {
 
 std::ostream& OutputFile::stream() {
   if (is_stdout()) return std::cout;
-  return file_;
+  return *out_;
 }
 
 void OutputFile::commit() {
@@ -107,29 +88,54 @@ void OutputFile::commit() {
     committed_ = true;
     return;
   }
-  file_.flush();
-  const bool written = static_cast<bool>(file_);
-  const int write_error = errno;
-  file_.close();
-  if (!written || !file_) {
+  if (!buffer_->flush_all() || !*out_) {
+    const std::string error = buffer_->error();
     discard();
-    throw RunError(path_ + ": write failed: " + error_text(write_error));
+    throw RunError(path_ + ": write failed: " + error);
   }
-  if (std::rename(temp_path_.c_str(), path_.c_str()) != 0) {
-    const int error = errno;
+  try {
+    file_->commit();
+  } catch (const calder::Error& e) {
     discard();
-    throw RunError(path_ + ": cannot replace the file: " + error_text(error));
+    throw RunError(e.what());
   }
   committed_ = true;
   unwatch_signals();
 }
 
 void OutputFile::discard() noexcept {
-  if (temp_path_.empty()) return;
-  if (file_.is_open()) file_.close();
-  ::unlink(temp_path_.c_str());
-  temp_path_.clear();
+  if (!file_) return;
+  file_->discard();
+  file_.reset();
   unwatch_signals();
 }
+
+OutputFile::Buffer::Buffer(calder::OutputFile& file) : file_(&file), data_(std::size_t{1} << 16) {
+  setp(data_.data(), data_.data() + data_.size());
+}
+
+bool OutputFile::Buffer::flush_all() {
+  const auto size = static_cast<std::size_t>(pptr() - pbase());
+  if (size == 0) return error_.empty();
+  try {
+    file_->write_all(pbase(), size);
+  } catch (const calder::Error& e) {
+    error_ = e.what();
+    return false;
+  }
+  setp(data_.data(), data_.data() + data_.size());
+  return true;
+}
+
+OutputFile::Buffer::int_type OutputFile::Buffer::overflow(int_type c) {
+  if (!flush_all()) return traits_type::eof();
+  if (!traits_type::eq_int_type(c, traits_type::eof())) {
+    *pptr() = traits_type::to_char_type(c);
+    pbump(1);
+  }
+  return traits_type::not_eof(c);
+}
+
+int OutputFile::Buffer::sync() { return flush_all() ? 0 : -1; }
 
 }  // namespace calder::app

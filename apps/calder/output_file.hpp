@@ -1,16 +1,18 @@
 // calder command: an output file that appears whole or not at all.
 //
-// The data goes to a temporary file in the target's directory (a hidden
-// ".NAME.tmp-XXXXXX"), which is renamed over the target only by commit(),
+// The data goes to a temporary file in the target's directory
+// (calder::OutputFile: mode 0644, flushed to disk), renamed over the target only by commit(),
 // after everything was written and flushed. If commit() is never reached (an
 // error, an exception) the destructor removes the temporary; so does SIGINT
 // or SIGTERM while one exists. The target is never left half written.
 // The path "-" means standard output (written directly, nothing to rename).
 #pragma once
 
-#include <fstream>
+#include <calder/output_file.hpp>
 #include <memory>
+#include <optional>
 #include <ostream>
+#include <streambuf>
 #include <string>
 #include <vector>
 
@@ -36,12 +38,30 @@ class OutputFile {
   void commit();
 
  private:
+  // A buffered stream onto calder::OutputFile::write_all; a failed write
+  // sets badbit and keeps its error for commit().
+  class Buffer : public std::streambuf {
+   public:
+    explicit Buffer(calder::OutputFile& file);
+    bool flush_all();
+    [[nodiscard]] const std::string& error() const { return error_; }
+
+   protected:
+    int_type overflow(int_type c) override;
+    int sync() override;
+
+   private:
+    calder::OutputFile* file_;
+    std::vector<char> data_;
+    std::string error_;
+  };
+
   void discard() noexcept;
 
   std::string path_;
-  std::string temp_path_;
-  std::vector<char> buffer_;
-  std::ofstream file_;
+  std::optional<calder::OutputFile> file_;  // the atomic file itself (calder::render)
+  std::unique_ptr<Buffer> buffer_;
+  std::unique_ptr<std::ostream> out_;
   bool committed_ = false;
 };
 

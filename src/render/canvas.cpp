@@ -18,8 +18,8 @@
 #include "calder/diagnostics.hpp"
 #include "calder/error.hpp"
 #include "calder/fields.hpp"
+#include "calder/output_file.hpp"
 #include "calder/render.hpp"
-#include "output_file.hpp"
 
 namespace calder {
 
@@ -172,7 +172,7 @@ std::uint8_t unpremultiply(std::uint32_t c, std::uint32_t a) {
 }
 
 struct PngSink {
-  render_detail::OutputFile* file = nullptr;
+  OutputFile* file = nullptr;
   std::vector<unsigned char>* bytes = nullptr;
   int error = 0;
 };
@@ -529,7 +529,7 @@ std::vector<unsigned char> Canvas::encode_png() const {
 }
 
 void Canvas::write_png(const std::string& path) const {
-  render_detail::OutputFile file("Canvas::write_png", path);
+  OutputFile file("Canvas::write_png", path);
   PngSink sink{&file, nullptr, 0};
   const cairo_status_t status =
       cairo_surface_write_to_png_stream(impl_->surface, write_png_bytes, &sink);

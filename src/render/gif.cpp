@@ -15,8 +15,8 @@
 #include <vector>
 
 #include "calder/error.hpp"
+#include "calder/output_file.hpp"
 #include "calder/render.hpp"
-#include "output_file.hpp"
 
 namespace calder {
 
@@ -68,7 +68,7 @@ int delay_cs(int index, double fps) {
 }  // namespace
 
 struct GifWriter::Impl {
-  render_detail::OutputFile file;
+  OutputFile file;
   GifFileType* gif = nullptr;
   liq_attr* quantizer = nullptr;
   int width = 0;

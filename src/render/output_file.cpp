@@ -1,4 +1,4 @@
-#include "output_file.hpp"
+#include "calder/output_file.hpp"
 
 #include <fcntl.h>
 #include <sys/stat.h>
@@ -12,7 +12,7 @@
 
 #include "calder/error.hpp"
 
-namespace calder::render_detail {
+namespace calder {
 
 namespace {
 
@@ -95,4 +95,4 @@ void OutputFile::discard() noexcept {
   if (!temp_path_.empty()) ::unlink(temp_path_.c_str());
 }
 
-}  // namespace calder::render_detail
+}  // namespace calder

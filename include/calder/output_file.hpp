@@ -1,4 +1,5 @@
-// calder render: files written atomically with mode 0644.
+// calder: files written atomically with mode 0644 (part of calder::render;
+// the `calder` command's trajectories use it too).
 //
 // An OutputFile is a temporary file in the folder of its final path, opened
 // for writing; commit() gives it mode 0644 (whatever the umask), flushes it
@@ -10,7 +11,7 @@
 #include <cstddef>
 #include <string>
 
-namespace calder::render_detail {
+namespace calder {
 
 class OutputFile {
  public:
@@ -44,4 +45,4 @@ class OutputFile {
   bool done_ = false;  // committed or discarded
 };
 
-}  // namespace calder::render_detail
+}  // namespace calder
