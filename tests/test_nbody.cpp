@@ -16,9 +16,11 @@
 #include <vector>
 
 #include "calder/error.hpp"
+#include "calder/fields.hpp"
 #include "calder/forces.hpp"
 #include "calder/nbody.hpp"
 #include "calder/vec2.hpp"
+#include "calder/world.hpp"
 
 namespace {
 
@@ -211,6 +213,12 @@ TEST(NbodyReference, OptionsForMapsTheCoreLaws) {
   EXPECT_THROW(
       nb::options_for(calder::AttractionLaw::from([](double, double, double) { return 1.0; })),
       Error);
+  calder::AttractionLaw power = calder::AttractionLaw::book();
+  power.exponent = 1.0;
+  EXPECT_THROW(nb::options_for(power), Error);
+  calder::AttractionLaw core = calder::AttractionLaw::book();
+  core.repulsion = 0.5;
+  EXPECT_THROW(nb::options_for(core), Error);
 }
 
 // ----------------------------------------------------------------- direct sum ---
@@ -564,6 +572,36 @@ TEST(NbodyBarnesHut, ResultsAreBitIdenticalForAnyThreadCount) {
   }
 }
 
+TEST(NbodyBarnesHut, LargeTreesAreBuiltInParallelPartsDeterministically) {
+  // From 16384 bodies the tree's top is built first and the subtrees below
+  // it in parallel: the same tree, and bit-identical results, for any number
+  // of threads; a sample of bodies checked against the reference.
+  const System s = clusters(30000, 20);
+  nb::BarnesHutOptions b;
+  static_cast<nb::Options&>(b) = plummer(0.05);
+  b.precision = nb::Precision::float32;
+  b.threads = 1;
+  nb::BarnesHut solver;
+  Field one{std::vector<double>(s.size()), std::vector<double>(s.size())};
+  solver.accelerations(s.x, s.y, s.m, one.ax, one.ay, b);
+  const nb::BarnesHutStats stats = solver.stats();
+  b.threads = 2;
+  Field two{std::vector<double>(s.size()), std::vector<double>(s.size())};
+  solver.accelerations(s.x, s.y, s.m, two.ax, two.ay, b);
+  EXPECT_TRUE(bit_identical(one, two));
+  EXPECT_EQ(solver.stats().nodes, stats.nodes);
+  EXPECT_EQ(solver.stats().interactions, stats.interactions);
+  double sum = 0.0;
+  int count = 0;
+  for (std::size_t i = 0; i < s.size(); i += 1499) {
+    const Vec2 a = nb::reference_acceleration(s.x, s.y, s.m, i, plummer(0.05));
+    const double rel = std::hypot(one.ax[i] - a.x, one.ay[i] - a.y) / a.mag();
+    sum += rel * rel;
+    ++count;
+  }
+  EXPECT_LT(std::sqrt(sum / count), 1e-3);
+}
+
 TEST(NbodyBarnesHut, SolverReuseGivesTheSameResults) {
   nb::BarnesHut solver;
   nb::BarnesHutOptions b;
@@ -581,6 +619,53 @@ TEST(NbodyBarnesHut, SolverReuseGivesTheSameResults) {
     EXPECT_GT(st.interactions, 0u);
     EXPECT_LE(st.interactions, std::uint64_t{n} * n);
   }
+}
+
+// ----------------------------------------------------------- the World's hook ---
+
+// Positions after `steps` steps of a world of the disk's bodies under mutual
+// attraction summed by `method`.
+std::vector<Vec2> run_world(const System& s, calder::NBodyMethod method, bool single_precision,
+                            const calder::AttractionLaw& law, int steps) {
+  calder::World world;
+  std::vector<calder::BodyId> ids;
+  for (std::size_t i = 0; i < s.size(); ++i) {
+    ids.push_back(world.add_body({.position = {s.x[i], s.y[i]}, .mass = s.m[i]}));
+  }
+  world.add(calder::MutualAttraction{
+      .law = law, .method = method, .theta = 0.3, .single_precision = single_precision});
+  world.step(steps);
+  std::vector<Vec2> positions;
+  for (const calder::BodyId id : ids) positions.push_back(world.position(id));
+  return positions;
+}
+
+double largest_difference(const std::vector<Vec2>& a, const std::vector<Vec2>& b) {
+  double d = 0.0;
+  for (std::size_t i = 0; i < a.size(); ++i) d = std::max(d, (a[i] - b[i]).mag());
+  return d;
+}
+
+TEST(NbodyInstall, MutualAttractionUsesTheFastMethods) {
+  nb::install();
+  const System s = disk(300, 21, 50.0, 320.0, 120.0);
+  for (const calder::AttractionLaw& law :
+       {calder::AttractionLaw::newtonian(1.0, 0.5), calder::AttractionLaw::book(1.0, 2.0, 20.0)}) {
+    const std::vector<Vec2> exact = run_world(s, calder::NBodyMethod::exact, false, law, 5);
+    const std::vector<Vec2> start = run_world(s, calder::NBodyMethod::exact, false, law, 0);
+    const double moved = largest_difference(exact, start);
+    ASSERT_GT(moved, 1e-2);
+    EXPECT_LT(largest_difference(run_world(s, calder::NBodyMethod::direct, false, law, 5), exact),
+              1e-10 * moved);
+    EXPECT_LT(largest_difference(run_world(s, calder::NBodyMethod::direct, true, law, 5), exact),
+              1e-4 * moved);
+    EXPECT_LT(
+        largest_difference(run_world(s, calder::NBodyMethod::barnes_hut, false, law, 5), exact),
+        1e-2 * moved);
+  }
+  // A custom law has no fast kernel: the step says so.
+  const auto custom = calder::AttractionLaw::from([](double, double, double) { return 1.0; });
+  EXPECT_THROW(run_world(s, calder::NBodyMethod::direct, false, custom, 1), Error);
 }
 
 TEST(NbodyBuild, ReportsItsKernelsAndThreads) {

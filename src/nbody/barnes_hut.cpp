@@ -47,6 +47,8 @@ constexpr int kRadixPasses = 2 * kBits / kRadixBits;
 // Per node, as the multipole kernels read them (kernels.hpp): m, 3 Q (3), 1.5 tr Q,
 // 7.5 O (4), 1.5 P (2).
 constexpr std::size_t kMoments = 11;
+// From this many bodies the build (sort, tree) uses threads too.
+constexpr std::size_t kParallelBuild = 16384;
 
 // What the walk reads of a node.
 struct Node {
@@ -224,7 +226,7 @@ void BarnesHut::Workspace::sort_bodies(std::span<const double> x, std::span<cons
                                        std::span<const double> mass, int threads) {
   const std::size_t n = x.size();
   // Small inputs are not worth waking threads for.
-  const int team = n < 50000 ? 1 : threads;
+  const int team = n < kParallelBuild ? 1 : threads;
   double xmin = x[0];
   double xmax = x[0];
   double ymin = y[0];
@@ -508,9 +510,10 @@ void BarnesHut::Workspace::build_tree(int threads) {
   pending.clear();
   top.clear();
   // About 64 subtrees for large inputs, and never a group or a leaf above them.
-  const std::size_t cutoff = n < 50000 ? n : std::max({std::size_t{n} / 64, group_size, leaf_size});
+  const std::size_t cutoff =
+      n < kParallelBuild ? n : std::max({std::size_t{n} / 64, group_size, leaf_size});
   plan(0, 0, n, 0, cutoff);
-  const int team = n < 50000 ? 1 : threads;
+  const int team = n < kParallelBuild ? 1 : threads;
 
   if (parts.size() < pending.size()) parts.resize(pending.size());
   const auto count = static_cast<std::ptrdiff_t>(pending.size());

@@ -150,6 +150,13 @@ Options options_for(const AttractionLaw& law) {
   if (law.custom) {
     throw Error("nbody::options_for: a custom force law has no n-body kernel");
   }
+  if (law.exponent != 2.0 || law.repulsion != 0.0) {
+    throw Error(
+        "nbody::options_for: the n-body kernels support the inverse-square law only (got "
+        "exponent " +
+        calder::detail::format_number(law.exponent) + ", repulsion " +
+        calder::detail::format_number(law.repulsion) + ")");
+  }
   law.validate("nbody::options_for");
   Options o;
   o.G = law.G;

@@ -1,0 +1,36 @@
+// calder::nbody::install(): the fast methods of MutualAttraction
+// (NBodyMethod::direct, NBodyMethod::barnes_hut) through the core's hook
+// (calder/fields.hpp, set_mutual_attraction_backend).
+#include <span>
+
+#include "calder/fields.hpp"
+#include "calder/nbody.hpp"
+
+namespace calder::nbody {
+
+namespace {
+
+// The core has added the central body's pulls; this adds the pairs'.
+void mutual_attraction(const MutualAttraction& field, const FieldContext& context,
+                       std::span<double> ax, std::span<double> ay) {
+  const BodyView& b = context.bodies;
+  Options options = options_for(field.law);  // throws for a custom law
+  options.precision = field.single_precision ? Precision::float32 : Precision::float64;
+  options.threads = field.threads;
+  if (field.method == NBodyMethod::barnes_hut) {
+    BarnesHutOptions bh;
+    static_cast<Options&>(bh) = options;
+    bh.theta = field.theta;
+    // One solver per calling thread keeps its buffers from step to step.
+    thread_local BarnesHut solver;
+    solver.accelerations(b.x, b.y, b.mass, ax, ay, bh);
+  } else {
+    direct_accelerations(b.x, b.y, b.mass, ax, ay, options);
+  }
+}
+
+}  // namespace
+
+void install() { set_mutual_attraction_backend(mutual_attraction); }
+
+}  // namespace calder::nbody
