@@ -50,14 +50,6 @@ void Boundary::validate(const char* where) const {
   detail::require_non_negative(restitution, w.c_str(), "restitution");
 }
 
-void World::validate_for_add(const Field& field) {
-  try {
-    validate(field);
-  } catch (const Error& e) {
-    throw Error(std::string("World::add: ") + e.what());
-  }
-}
-
 World::World(const WorldDef& def) : def_(def), random_(def.seed), noise_(def.seed) {
   detail::require_positive(def.width, "World", "width");
   detail::require_positive(def.height, "World", "height");
@@ -289,7 +281,11 @@ void World::check_finite(const char* where) const {
 }
 
 Field& World::add_field(Field field) {
-  validate_for_add(field);
+  try {
+    validate(field);
+  } catch (const Error& e) {
+    throw Error(std::string("World::add: ") + e.what());
+  }
   return fields_.emplace_back(std::move(field));
 }
 

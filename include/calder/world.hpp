@@ -146,8 +146,7 @@ class World {
   // Stores a field and returns a reference that stays valid until clear_fields().
   template <class F>
   F& add(F field) {
-    validate_for_add(Field{field});
-    return std::get<F>(fields_.emplace_back(std::move(field)));
+    return std::get<F>(add_field(Field{std::move(field)}));
   }
   // Stores a field given as the variant (scenes build these from data).
   Field& add_field(Field field);
@@ -189,7 +188,6 @@ class World {
 
  private:
   std::size_t checked(BodyId id, const char* where) const;
-  static void validate_for_add(const Field& field);
   void save_state();
   void restore_state();
   FieldContext context(const BodyView& view, double time) const;
