@@ -433,24 +433,59 @@ Scene exercise_2_15() {
   return s;
 }
 
+// Not from the book: the movers benchmark (docs/PERFORMANCE.md). Drops of
+// random mass under gravity and air drag, bouncing on their radius off the
+// walls and the floor; no body-body collisions. Set bodies[0].count for more
+// drops (the benchmark scales the canvas with it: same density).
+Scene rain() {
+  Scene s = base("rain",
+                 "Rain: a thousand drops under gravity and air drag, bouncing off the walls and "
+                 "the floor (the movers benchmark)");
+  BodyGroup drops;
+  drops.count = 1000;
+  drops.x = Draw::uniform(0.0, 640.0);
+  drops.y = Draw::uniform(0.0, 240.0);
+  drops.mass = Draw::uniform(0.5, 3.0);
+  drops.radius = radius_per_mass(2.0);
+  s.bodies.push_back(drops);
+  s.fields.push_back(field(Gravity{.g = {0.0, 0.1}, .scale_by_mass = true}));
+  s.fields.push_back(field(Drag{.c = 0.01}));
+  s.world.boundary = Boundary::bounce(0.9, true, {.top = false});
+  s.world.seed = 1;
+  return s;
+}
+
 struct Entry {
   const char* name;
   Scene (*make)();
 };
 
 const Entry kScenes[] = {
-    {"example-2.1", example_2_1},     {"example-2.2", example_2_2},
-    {"example-2.3", example_2_3},     {"example-2.4", example_2_4},
-    {"example-2.5", example_2_5},     {"example-2.6", example_2_6},
-    {"example-2.7", example_2_7},     {"example-2.8", example_2_8},
-    {"example-2.9", example_2_9},     {"exercise-2.1", exercise_2_1},
-    {"exercise-2.3", exercise_2_3},   {"exercise-2.4", exercise_2_4},
-    {"exercise-2.5", exercise_2_5},   {"exercise-2.6", exercise_2_6},
-    {"exercise-2.7", exercise_2_7},   {"exercise-2.8", exercise_2_8},
-    {"exercise-2.9", exercise_2_9},   {"exercise-2.10", exercise_2_10},
-    {"exercise-2.11", exercise_2_11}, {"exercise-2.12", exercise_2_12},
-    {"exercise-2.13", exercise_2_13}, {"exercise-2.14", exercise_2_14},
-    {"exercise-2.15", exercise_2_15}, {"exercise-2.16", exercise_2_16},
+    {"example-2.1", example_2_1},
+    {"example-2.2", example_2_2},
+    {"example-2.3", example_2_3},
+    {"example-2.4", example_2_4},
+    {"example-2.5", example_2_5},
+    {"example-2.6", example_2_6},
+    {"example-2.7", example_2_7},
+    {"example-2.8", example_2_8},
+    {"example-2.9", example_2_9},
+    {"exercise-2.1", exercise_2_1},
+    {"exercise-2.3", exercise_2_3},
+    {"exercise-2.4", exercise_2_4},
+    {"exercise-2.5", exercise_2_5},
+    {"exercise-2.6", exercise_2_6},
+    {"exercise-2.7", exercise_2_7},
+    {"exercise-2.8", exercise_2_8},
+    {"exercise-2.9", exercise_2_9},
+    {"exercise-2.10", exercise_2_10},
+    {"exercise-2.11", exercise_2_11},
+    {"exercise-2.12", exercise_2_12},
+    {"exercise-2.13", exercise_2_13},
+    {"exercise-2.14", exercise_2_14},
+    {"exercise-2.15", exercise_2_15},
+    {"exercise-2.16", exercise_2_16},
+    {"rain", rain},
 };
 
 }  // namespace

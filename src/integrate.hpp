@@ -1,19 +1,46 @@
-// Internal: the book's update for one body, shared by World::update and the
-// whole-world semi-implicit Euler step so that both give the same bits.
+// Internal: the book's update for one body, shared by World::update, the
+// whole-world semi-implicit Euler step and calder::movers' kernels so that
+// all give the same bits; and the periodic wrap of a coordinate.
 #pragma once
+
+#include <cmath>
 
 namespace calder::detail {
 
+// Internal linkage: calder::movers' kernels include this file in translation
+// units built with other flags (-march, -ffp-contract=fast); an inline
+// function shared across them could be merged by the linker into the core's
+// calls and change its bits, or its instruction set.
+namespace {
+
 // velocity += acceleration * dt; position += velocity * dt; acceleration = 0.
 // With dt = 1 the products are exact, so this is p5's vel.add(acc); pos.add(vel).
-inline void kick_drift(double& x, double& y, double& vx, double& vy, double& ax, double& ay,
-                       double dt) {
+// (A template so that calder::movers' float32 kernels share it.)
+template <class Real>
+inline void kick_drift(Real& x, Real& y, Real& vx, Real& vy, Real& ax, Real& ay, Real dt) {
   vx += ax * dt;
   vy += ay * dt;
   x += vx * dt;
   y += vy * dt;
-  ax = 0.0;
-  ay = 0.0;
+  ax = Real{};  // zero (also for calder::movers' vector types)
+  ay = Real{};
 }
+
+// Moves a coordinate that left [lo, hi] back in from the other side.
+template <class Real>
+inline Real wrap_coordinate(Real v, Real lo, Real hi) {
+  const Real span = hi - lo;
+  if (span <= Real(0)) return v;
+  if (v > hi) {
+    v -= span;
+    if (v > hi) v = lo + std::fmod(v - lo, span);
+  } else if (v < lo) {
+    v += span;
+    if (v < lo) v = hi - std::fmod(hi - v, span);
+  }
+  return v;
+}
+
+}  // namespace
 
 }  // namespace calder::detail

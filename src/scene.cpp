@@ -95,6 +95,9 @@ void Scene::validate() const {
       world.integrator != Integrator::semi_implicit_euler) {
     throw Error(where + ": the sequential update order needs the semi_implicit_euler integrator");
   }
+  if (world.threads < 0) {
+    throw Error(where + ": threads must be >= 0 (got " + std::to_string(world.threads) + ")");
+  }
   std::size_t total = 0;
   for (std::size_t g = 0; g < bodies.size(); ++g) {
     const BodyGroup& group = bodies[g];

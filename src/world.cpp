@@ -1,6 +1,7 @@
 #include "calder/world.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <cstddef>
 #include <limits>
@@ -29,20 +30,6 @@ void validate_body(const BodyDef& def, const char* where) {
   detail::require_non_negative(def.drag_area, where, "drag_area");
 }
 
-// Moves a coordinate that left [lo, hi] back in from the other side.
-double wrap_coordinate(double v, double lo, double hi) {
-  const double span = hi - lo;
-  if (span <= 0.0) return v;
-  if (v > hi) {
-    v -= span;
-    if (v > hi) v = lo + std::fmod(v - lo, span);
-  } else if (v < lo) {
-    v += span;
-    if (v < lo) v = hi - std::fmod(hi - v, span);
-  }
-  return v;
-}
-
 }  // namespace
 
 void Boundary::validate(const char* where) const {
@@ -55,6 +42,9 @@ World::World(const WorldDef& def) : def_(def), random_(def.seed), noise_(def.see
   detail::require_positive(def.height, "World", "height");
   detail::require_positive(def.dt, "World", "dt");
   def.boundary.validate("World");
+  if (def.threads < 0) {
+    throw Error("World: threads must be >= 0 (got " + std::to_string(def.threads) + ")");
+  }
 }
 
 std::size_t World::checked(BodyId id, const char* where) const {
@@ -227,8 +217,8 @@ void World::boundary_one(std::size_t i, const Boundary& b) {
       return;
     }
     case BoundaryKind::wrap:
-      if (b.edges.left || b.edges.right) x_[i] = wrap_coordinate(x_[i], -r, w + r);
-      if (b.edges.top || b.edges.bottom) y_[i] = wrap_coordinate(y_[i], -r, h + r);
+      if (b.edges.left || b.edges.right) x_[i] = detail::wrap_coordinate(x_[i], -r, w + r);
+      if (b.edges.top || b.edges.bottom) y_[i] = detail::wrap_coordinate(y_[i], -r, h + r);
       return;
   }
 }
@@ -297,7 +287,37 @@ Field& World::field(std::size_t index) {
   return fields_[index];
 }
 
-void World::step() {
+namespace {
+
+std::atomic<StepBatchBackend> batch_backend{nullptr};
+
+// Below this many body-steps a call is not worth a batch's setup.
+constexpr std::int64_t kBatchMinBodySteps = 4096;
+
+const char* arithmetic_name(Arithmetic a) {
+  switch (a) {
+    case Arithmetic::book:
+      return "book";
+    case Arithmetic::float64:
+      return "float64";
+    case Arithmetic::float32:
+      return "float32";
+  }
+  return "?";
+}
+
+}  // namespace
+
+void set_step_batch_backend(StepBatchBackend backend) { batch_backend = backend; }
+
+void World::set_threads(int threads) {
+  if (threads < 0) {
+    throw Error("World::set_threads: threads must be >= 0 (got " + std::to_string(threads) + ")");
+  }
+  def_.threads = threads;
+}
+
+void World::check_step_settings() const {
   for (const Field& field : fields_) {
     try {
       validate(field);
@@ -310,6 +330,15 @@ void World::step() {
     throw Error(
         "World::step: the sequential update order needs the semi_implicit_euler integrator");
   }
+  if (def_.threads < 0) {
+    throw Error("World::step: threads must be >= 0 (got " + std::to_string(def_.threads) + ")");
+  }
+}
+
+void World::step() { step(1); }
+
+void World::step_one() {
+  check_step_settings();
   // A step either completes or throws with the world as it was: keep the
   // state it may change (a copy of six arrays, small next to the forces).
   save_state();
@@ -330,6 +359,97 @@ void World::step() {
   ++step_count_;
 }
 
+void World::step(int count) {
+  if (count < 0) throw Error("World::step: count must be >= 0 (got " + std::to_string(count) + ")");
+  if (count == 0) return;
+  const bool book = def_.arithmetic == Arithmetic::book;
+  const bool batchable = def_.integrator == Integrator::semi_implicit_euler &&
+                         def_.update_order == UpdateOrder::simultaneous &&
+                         batch_backend.load() != nullptr;
+  if (!book && !batchable) {
+    throw Error(std::string("World::step: arithmetic ") + arithmetic_name(def_.arithmetic) +
+                (batch_backend.load() == nullptr
+                     ? " needs calder::movers (link calder::movers and call "
+                       "calder::movers::install())"
+                     : " needs the semi_implicit_euler integrator and the simultaneous update "
+                       "order"));
+  }
+  const auto body_steps = static_cast<std::int64_t>(x_.size()) * count;
+  if (batchable && (!book || body_steps >= kBatchMinBodySteps)) {
+    check_step_settings();
+    while (count > 0) {
+      const int steps = std::min(kBatchSteps, count);
+      // No kernel for one of the fields (book arithmetic): the loops below take over.
+      if (!step_batch(steps)) break;
+      count -= steps;
+    }
+  }
+  for (int k = 0; k < count; ++k) step_one();
+}
+
+bool World::step_batch(int steps) {
+  const StepBatchBackend backend = batch_backend.load();
+  StepBatch batch;
+  batch.x = x_;
+  batch.y = y_;
+  batch.vx = vx_;
+  batch.vy = vy_;
+  batch.ax = ax_;
+  batch.ay = ay_;
+  batch.mass = mass_;
+  batch.radius = radius_;
+  batch.friction = friction_;
+  batch.drag_area = drag_area_;
+  batch.fields = &fields_;
+  batch.boundary = def_.boundary;
+  batch.width = def_.width;
+  batch.height = def_.height;
+  batch.dt = def_.dt;
+  batch.time = time_;
+  batch.steps = steps;
+  batch.arithmetic = def_.arithmetic;
+  batch.threads = def_.threads;
+  batch.noise = &noise_;
+
+  const bool book = def_.arithmetic == Arithmetic::book;
+  save_state();
+  std::string why_not;
+  bool ran = false;
+  try {
+    ran = backend(batch, &why_not);
+  } catch (...) {
+    restore_state();
+    throw;
+  }
+  if (!ran) {
+    restore_state();
+    if (book) return false;
+    throw Error(std::string("World::step: arithmetic ") + arithmetic_name(def_.arithmetic) +
+                " needs a kernel for every field: " + why_not);
+  }
+  for (std::size_t i = 0; i < x_.size(); ++i) {
+    if (std::isfinite(x_[i]) && std::isfinite(y_[i]) && std::isfinite(vx_[i]) &&
+        std::isfinite(vy_[i])) {
+      continue;
+    }
+    restore_state();
+    if (book) {
+      // The same bits step by step: the failing step throws with its own
+      // message and leaves the world as it was before that step.
+      for (int k = 0; k < steps; ++k) step_one();
+      return true;
+    }
+    throw Error("World::step: body " + std::to_string(i) +
+                " got a non-finite position or velocity within steps " +
+                std::to_string(step_count_ + 1) + " to " + std::to_string(step_count_ + steps) +
+                " (arithmetic " + arithmetic_name(def_.arithmetic) +
+                "); the world is left as it was after step " + std::to_string(step_count_));
+  }
+  for (int k = 0; k < steps; ++k) time_ += def_.dt;
+  step_count_ += steps;
+  return true;
+}
+
 void World::save_state() {
   const std::size_t n = x_.size();
   saved_.resize(6 * n);
@@ -344,11 +464,6 @@ void World::restore_state() {
     std::copy(in, in + static_cast<std::ptrdiff_t>(v->size()), v->begin());
     in += static_cast<std::ptrdiff_t>(v->size());
   }
-}
-
-void World::step(int count) {
-  if (count < 0) throw Error("World::step: count must be >= 0 (got " + std::to_string(count) + ")");
-  for (int k = 0; k < count; ++k) step();
 }
 
 }  // namespace calder

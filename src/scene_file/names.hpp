@@ -77,6 +77,12 @@ inline constexpr std::array<Choice<PairOrder>, 2> kPairOrders{{
     {"by_source", PairOrder::by_source},
 }};
 
+inline constexpr std::array<Choice<Arithmetic>, 3> kArithmetics{{
+    {"book", Arithmetic::book},
+    {"float64", Arithmetic::float64},
+    {"float32", Arithmetic::float32},
+}};
+
 inline constexpr std::array<Choice<NBodyMethod>, 3> kNBodyMethods{{
     {"exact", NBodyMethod::exact},
     {"direct", NBodyMethod::direct},

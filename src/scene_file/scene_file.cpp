@@ -39,6 +39,7 @@ namespace {
 
 using scene_file_detail::cat;
 using scene_file_detail::Choice;
+using scene_file_detail::kArithmetics;
 using scene_file_detail::kBoundaryKinds;
 using scene_file_detail::kBoundaryTimings;
 using scene_file_detail::kClamps;
@@ -496,10 +497,21 @@ void Reader::world(const Tbl& top, Scene& s) const {
   const toml::table* t = top.table("world");
   if (t == nullptr) return;
   const Tbl w(*this, *t, "[world]", "world.");
-  w.allow({"dt", "integrator", "update_order"});
+  w.allow({"dt", "integrator", "update_order", "arithmetic", "threads"});
   s.world.dt = w.number("dt", s.world.dt, Check::positive);
   s.world.integrator = w.choice("integrator", kIntegrators, s.world.integrator);
   s.world.update_order = w.choice("update_order", kUpdateOrders, s.world.update_order);
+  s.world.arithmetic = w.choice("arithmetic", kArithmetics, s.world.arithmetic);
+  if (const toml::node* n = w.find("threads")) {
+    s.world.threads = static_cast<int>(integer(*n, "world.threads", 0, 1024));
+  }
+  if (s.world.arithmetic != Arithmetic::book &&
+      (s.world.integrator != Integrator::semi_implicit_euler ||
+       s.world.update_order != UpdateOrder::simultaneous)) {
+    fail(w.require("arithmetic"),
+         "arithmetic other than \"book\" needs integrator = \"semi_implicit_euler\" and "
+         "update_order = \"simultaneous\"");
+  }
   if (s.world.update_order == UpdateOrder::sequential &&
       s.world.integrator != Integrator::semi_implicit_euler) {
     fail(w.require("update_order"),

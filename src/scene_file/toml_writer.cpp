@@ -25,6 +25,7 @@ namespace calder {
 namespace {
 
 using scene_file_detail::cat;
+using scene_file_detail::kArithmetics;
 using scene_file_detail::kBoundaryKinds;
 using scene_file_detail::kBoundaryTimings;
 using scene_file_detail::kClamps;
@@ -299,6 +300,8 @@ std::string to_toml(const Scene& scene) {
   w.line("dt", num(scene.world.dt));
   w.line("integrator", str(name_of(kIntegrators, scene.world.integrator)));
   w.line("update_order", str(name_of(kUpdateOrders, scene.world.update_order)));
+  w.line("arithmetic", str(name_of(kArithmetics, scene.world.arithmetic)));
+  w.line("threads", std::to_string(scene.world.threads));
 
   const Boundary& b = scene.world.boundary;
   w.header("[boundary]");

@@ -1,0 +1,63 @@
+// calder::movers: whole-world kernels for the per-body fields, for worlds of
+// thousands to millions of movers that don't interact (rain, particles,
+// crowds under wind and drag).
+//
+// After calder::movers::install(), World::step(count) hands large worlds to
+// these kernels instead of stepping body by body through the fields:
+//
+//   calder::movers::install();            // once, at start-up
+//   calder::World world({.arithmetic = calder::Arithmetic::book, .threads = 0});
+//   ... add 100000 bodies, Gravity, Drag, a bounce boundary ...
+//   world.step(1000);                     // vectorised, threaded, cache-blocked
+//
+// What they run: semi-implicit Euler, the simultaneous update order, and the
+// fields Gravity, Wind, NoiseWind, Helium, Fan, EdgeForce, Friction, Liquid,
+// Drag, Lift and Attractor (the inverse-square laws: the book clamp, the
+// squared clamp, Plummer), with the bounce, wrap or no boundary. A world with
+// mutual attraction or a custom force steps body by body as before.
+//
+// How: the bodies are cut into tiles of kTile; one thread advances a tile
+// through a whole batch of steps (World::kBatchSteps) while it sits in the
+// L1 cache, one pass per field per step over the tile's arrays, each pass a
+// loop the compiler vectorises (AVX-512, AVX2 + FMA or SSE2, as
+// calder::nbody's kernels). Bodies don't interact, so no order between tiles
+// matters: results are bit-identical for any number of threads, and there is
+// no broad phase to pay for.
+//
+// Arithmetic (WorldDef::arithmetic):
+//   book     the same operations in the same order as the plain loops (no
+//            fused multiply-adds: that file is compiled with
+//            -ffp-contract=off), so the same bits: p5.js sketches still
+//            reproduce their references exactly;
+//   float64  a / m as a * (1 / m), (g m) / m as g, drag as -c |v| v / m, fused
+//            multiply-adds;
+//   float32  the float64 formulas in float, state rounded to float for the
+//            batch. Errors against book: docs/PERFORMANCE.md.
+#pragma once
+
+#include <cstddef>
+#include <string>
+
+#include "calder/world.hpp"
+
+namespace calder::movers {
+
+// Bodies per tile (one thread, one cache-resident block).
+inline constexpr std::size_t kTile = 256;
+
+// Registers the kernels with the core (calder::set_step_batch_backend).
+// Idempotent.
+void install();
+
+// Whether the kernels can step this world: "" when they can, otherwise why
+// not (e.g. "field custom_force has no kernel").
+std::string unsupported(const World& world);
+
+// The instruction set of the kernels in use ("avx512", "avx2+fma", "sse2",
+// "generic"; see calder::nbody::kernel_name()).
+const char* kernel_name();
+
+// The number of threads that threads = 0 means (1 without OpenMP).
+int max_threads();
+
+}  // namespace calder::movers

@@ -1,0 +1,38 @@
+// calder::movers: the float64 and float32 tile kernels (kernels_impl.hpp).
+//
+// Compiled once per instruction set (CMakeLists.txt, calder_movers) with
+// -ffp-contract=fast: fused multiply-adds are welcome here; none of the
+// book-fidelity code goes through this file.
+#include "kernels_impl.hpp"
+
+#ifndef CALDER_KERNEL_VARIANT
+#error "CALDER_KERNEL_VARIANT must name the variant (set by CMakeLists.txt)"
+#endif
+
+#define CALDER_MOVERS_CAT2(a, b) a##b
+#define CALDER_MOVERS_CAT(a, b) CALDER_MOVERS_CAT2(a, b)
+
+namespace calder::movers::detail {
+
+// The instruction set this file was compiled for.
+const char* CALDER_MOVERS_CAT(kernel_name_, CALDER_KERNEL_VARIANT)() {
+#if defined(__AVX512F__)
+  return "avx512";
+#elif defined(__AVX2__) && defined(__FMA__)
+  return "avx2+fma";
+#elif defined(__SSE2__)
+  return "sse2";
+#else
+  return "generic";
+#endif
+}
+
+void CALDER_MOVERS_CAT(advance_fast64_, CALDER_KERNEL_VARIANT)(const Plan& plan, const Tile& tile) {
+  advance_fast64(plan, tile);
+}
+
+void CALDER_MOVERS_CAT(advance_fast32_, CALDER_KERNEL_VARIANT)(const Plan& plan, const Tile& tile) {
+  advance_fast32(plan, tile);
+}
+
+}  // namespace calder::movers::detail

@@ -1,0 +1,84 @@
+// calder::movers: the whole-world batch stepper (see calder/movers.hpp):
+// compiles the fields, cuts the bodies into tiles and hands the tiles to
+// threads; each tile runs the whole batch in one kernel call.
+#include "calder/movers.hpp"
+
+#include <algorithm>
+#include <string>
+
+#include "plan.hpp"
+
+#if defined(_OPENMP)
+#include <omp.h>
+#endif
+
+namespace calder::movers {
+
+namespace {
+
+// Fewer bodies than this run on one thread: a batch of a few tiles takes
+// microseconds, comparable to waking a thread.
+constexpr std::size_t kMinBodiesPerThread = 2 * kTile;
+
+bool run_batch(const StepBatch& batch, std::string* why_not) {
+  // One plan per calling thread keeps its storage from batch to batch.
+  // (A reference: inside the parallel loop, the name of a thread_local would
+  // mean each worker thread's own, empty, plan.)
+  thread_local detail::Plan caller_plan;
+  detail::Plan& plan = caller_plan;
+  if (!detail::compile(batch, plan, why_not)) return false;
+  const detail::KernelTable& table = detail::kernels();
+  detail::AdvanceTile advance = table.book64;
+  if (batch.arithmetic == Arithmetic::float64) advance = table.fast64;
+  if (batch.arithmetic == Arithmetic::float32) advance = table.fast32;
+
+  const std::size_t n = batch.x.size();
+  const auto tiles = static_cast<long long>((n + kTile - 1) / kTile);
+  int threads = batch.threads > 0 ? batch.threads : max_threads();
+  threads = static_cast<int>(
+      std::min<std::size_t>(static_cast<std::size_t>(threads), n / kMinBodiesPerThread + 1));
+  const auto run_tile = [&](long long t) {
+    const std::size_t first = static_cast<std::size_t>(t) * kTile;
+    const detail::Tile tile{
+        batch.x.data() + first,         batch.y.data() + first,      batch.vx.data() + first,
+        batch.vy.data() + first,        batch.ax.data() + first,     batch.ay.data() + first,
+        batch.mass.data() + first,      batch.radius.data() + first, batch.friction.data() + first,
+        batch.drag_area.data() + first, std::min(kTile, n - first)};
+    advance(plan, tile);
+  };
+  // Tiles are independent: which thread runs one changes no bit of it.
+#if defined(_OPENMP)
+#pragma omp parallel for schedule(static) num_threads(threads) if (threads > 1)
+  for (long long t = 0; t < tiles; ++t) run_tile(t);
+#else
+  (void)threads;
+  for (long long t = 0; t < tiles; ++t) run_tile(t);
+#endif
+  return true;
+}
+
+}  // namespace
+
+void install() { set_step_batch_backend(run_batch); }
+
+std::string unsupported(const World& world) {
+  if (world.integrator() != Integrator::semi_implicit_euler) {
+    return "the kernels integrate with semi_implicit_euler only";
+  }
+  if (world.update_order() != UpdateOrder::simultaneous) {
+    return "the kernels need the simultaneous update order";
+  }
+  return detail::unsupported_field(world.fields());
+}
+
+const char* kernel_name() { return detail::kernels().name; }
+
+int max_threads() {
+#if defined(_OPENMP)
+  return omp_get_max_threads();
+#else
+  return 1;
+#endif
+}
+
+}  // namespace calder::movers
