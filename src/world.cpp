@@ -413,26 +413,21 @@ bool World::step_batch(int steps) {
   batch.noise = &noise_;
 
   const bool book = def_.arithmetic == Arithmetic::book;
-  save_state();
+  const std::size_t n = x_.size();
+  saved_.resize(6 * n);  // the backend saves the state into it (restore_state's layout)
+  std::size_t first_non_finite = n;
+  batch.saved = saved_.data();
+  batch.first_non_finite = &first_non_finite;
   std::string why_not;
-  bool ran = false;
-  try {
-    ran = backend(batch, &why_not);
-  } catch (...) {
-    restore_state();
-    throw;
-  }
+  // The backend declines (or throws) only before it changes anything.
+  const bool ran = backend(batch, &why_not);
   if (!ran) {
-    restore_state();
     if (book) return false;
     throw Error(std::string("World::step: arithmetic ") + arithmetic_name(def_.arithmetic) +
                 " needs a kernel for every field: " + why_not);
   }
-  for (std::size_t i = 0; i < x_.size(); ++i) {
-    if (std::isfinite(x_[i]) && std::isfinite(y_[i]) && std::isfinite(vx_[i]) &&
-        std::isfinite(vy_[i])) {
-      continue;
-    }
+  if (first_non_finite < n) {
+    const std::size_t i = first_non_finite;
     restore_state();
     if (book) {
       // The same bits step by step: the failing step throws with its own

@@ -123,10 +123,18 @@ struct StepBatch {
   Arithmetic arithmetic = Arithmetic::book;
   int threads = 0;
   const Noise* noise = nullptr;
+  // Before advancing them, the backend copies x, y, vx, vy, ax, ay into
+  // saved (6 n doubles: all x, then all y, ...), so that the world can undo
+  // the batch; afterwards it sets *first_non_finite to the lowest index of a
+  // body whose position or velocity is not finite (n if none). Done tile by
+  // tile in the backend's threads, not serially by the world.
+  double* saved = nullptr;
+  std::size_t* first_non_finite = nullptr;
 };
 // Runs batch.steps simultaneous semi-implicit Euler steps and returns true,
 // or returns false, changing nothing, when it has no kernel for one of the
-// fields (then *why_not, if given, names it).
+// fields (then *why_not, if given, names it). It may throw only before it
+// changes anything.
 using StepBatchBackend = bool (*)(const StepBatch& batch, std::string* why_not);
 void set_step_batch_backend(StepBatchBackend backend);
 

@@ -4,7 +4,9 @@
 #include "calder/movers.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <string>
+#include <vector>
 
 #include "plan.hpp"
 
@@ -37,14 +39,39 @@ bool run_batch(const StepBatch& batch, std::string* why_not) {
   int threads = batch.threads > 0 ? batch.threads : max_threads();
   threads = static_cast<int>(
       std::min<std::size_t>(static_cast<std::size_t>(threads), n / kMinBodiesPerThread + 1));
+  // Each tile's first body left non-finite (n: none), reduced in tile order.
+  thread_local std::vector<std::size_t> caller_bad;
+  std::vector<std::size_t>& bad = caller_bad;
+  bad.assign(static_cast<std::size_t>(tiles), n);
   const auto run_tile = [&](long long t) {
     const std::size_t first = static_cast<std::size_t>(t) * kTile;
-    const detail::Tile tile{
-        batch.x.data() + first,         batch.y.data() + first,      batch.vx.data() + first,
-        batch.vy.data() + first,        batch.ax.data() + first,     batch.ay.data() + first,
-        batch.mass.data() + first,      batch.radius.data() + first, batch.friction.data() + first,
-        batch.drag_area.data() + first, std::min(kTile, n - first)};
+    const std::size_t count = std::min(kTile, n - first);
+    double* const state[6] = {batch.x.data(),  batch.y.data(),  batch.vx.data(),
+                              batch.vy.data(), batch.ax.data(), batch.ay.data()};
+    if (batch.saved != nullptr) {
+      for (std::size_t k = 0; k < 6; ++k) {
+        std::copy(state[k] + first, state[k] + first + count, batch.saved + k * n + first);
+      }
+    }
+    const detail::Tile tile{state[0] + first,
+                            state[1] + first,
+                            state[2] + first,
+                            state[3] + first,
+                            state[4] + first,
+                            state[5] + first,
+                            batch.mass.data() + first,
+                            batch.radius.data() + first,
+                            batch.friction.data() + first,
+                            batch.drag_area.data() + first,
+                            count};
     advance(plan, tile);
+    for (std::size_t i = first; i < first + count; ++i) {
+      if (!std::isfinite(state[0][i]) || !std::isfinite(state[1][i]) ||
+          !std::isfinite(state[2][i]) || !std::isfinite(state[3][i])) {
+        bad[static_cast<std::size_t>(t)] = i;
+        break;
+      }
+    }
   };
   // Tiles are independent: which thread runs one changes no bit of it.
 #if defined(_OPENMP)
@@ -54,6 +81,15 @@ bool run_batch(const StepBatch& batch, std::string* why_not) {
   (void)threads;
   for (long long t = 0; t < tiles; ++t) run_tile(t);
 #endif
+  if (batch.first_non_finite != nullptr) {
+    *batch.first_non_finite = n;
+    for (const std::size_t i : bad) {
+      if (i < n) {
+        *batch.first_non_finite = i;
+        break;
+      }
+    }
+  }
   return true;
 }
 
