@@ -3,9 +3,7 @@
 // The same variants and the same choice as calder::nbody (src/nbody/dispatch.cpp):
 // "native" alone by default, or with CALDER_PORTABLE=ON "baseline", "x86v3"
 // (AVX2 + FMA) and "x86v4" (AVX-512F), lowered by CALDER_NBODY_KERNELS.
-#include <cstdlib>
-#include <cstring>
-
+#include "../kernel_level.hpp"
 #include "plan.hpp"
 
 namespace calder::movers::detail {
@@ -37,33 +35,16 @@ namespace {
         advance_fast32_##variant                                                 \
   }
 
-// CALDER_NBODY_KERNELS=avx512|avx2|baseline caps the choice (benchmarks).
-[[maybe_unused]] int requested_level() {
-  const char* env = std::getenv("CALDER_NBODY_KERNELS");
-  if (env == nullptr) return 3;
-  if (std::strcmp(env, "baseline") == 0) return 1;
-  if (std::strcmp(env, "avx2") == 0) return 2;
-  return 3;
-}
-
 KernelTable choose() {
 #if defined(CALDER_MOVERS_HAS_native)
   return CALDER_MOVERS_TABLE(native);
 #else
-  [[maybe_unused]] const int level = requested_level();
-#if defined(CALDER_MOVERS_HAS_x86v4) || defined(CALDER_MOVERS_HAS_x86v3)
-  __builtin_cpu_init();
-#endif
+  [[maybe_unused]] const int level = calder::detail::kernel_level();
 #if defined(CALDER_MOVERS_HAS_x86v4)
-  if (level >= 3 && __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx2") &&
-      __builtin_cpu_supports("fma")) {
-    return CALDER_MOVERS_TABLE(x86v4);
-  }
+  if (level >= 3) return CALDER_MOVERS_TABLE(x86v4);
 #endif
 #if defined(CALDER_MOVERS_HAS_x86v3)
-  if (level >= 2 && __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma")) {
-    return CALDER_MOVERS_TABLE(x86v3);
-  }
+  if (level >= 2) return CALDER_MOVERS_TABLE(x86v3);
 #endif
   return CALDER_MOVERS_TABLE(baseline);
 #endif

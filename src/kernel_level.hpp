@@ -1,0 +1,33 @@
+// Internal: which instruction-set variant of the kernel files (calder::nbody,
+// calder::movers) a portable build (CALDER_PORTABLE=ON) should run, decided
+// once by both libraries' dispatch.cpp in the same way.
+#pragma once
+
+#include <cstdlib>
+#include <cstring>
+
+namespace calder::detail {
+
+// 1: baseline, 2: AVX2 + FMA (x86v3), 3: AVX-512F (x86v4).
+//
+// The best level this CPU supports, capped by the environment variable
+// CALDER_NBODY_KERNELS=avx512|avx2|baseline (benchmarks force the AVX2
+// kernels on an AVX-512 machine with it; it names both libraries' kernels).
+inline int kernel_level() {
+  int level = 3;
+  if (const char* env = std::getenv("CALDER_NBODY_KERNELS")) {
+    if (std::strcmp(env, "baseline") == 0) level = 1;
+    if (std::strcmp(env, "avx2") == 0) level = 2;
+  }
+#if defined(__x86_64__) || defined(__i386__)
+  __builtin_cpu_init();
+  const bool avx2 = __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
+  const bool avx512 = avx2 && __builtin_cpu_supports("avx512f");
+  const int supported = avx512 ? 3 : (avx2 ? 2 : 1);
+#else
+  const int supported = 1;
+#endif
+  return level < supported ? level : supported;
+}
+
+}  // namespace calder::detail
