@@ -1,7 +1,8 @@
 # Compile options for calder's own targets (library, examples, tests, tools).
 #
-# calder_target_defaults(<target>) gives a target calder's warnings (never
-# exported to consumers) and, when CALDER_SANITIZE is set, the sanitizers.
+# calder_target_defaults(<target>) gives a target calder's warnings and
+# -ffp-contract=off (neither is handed on to consumers) and, when
+# CALDER_SANITIZE is set, the sanitizers.
 include_guard(GLOBAL)
 
 set(CALDER_WARNING_FLAGS
@@ -17,7 +18,12 @@ set(CALDER_WARNING_FLAGS
 
 function(calder_target_defaults target)
   if(CMAKE_CXX_COMPILER_ID MATCHES "^(GNU|Clang|AppleClang)$")
-    target_compile_options(${target} PRIVATE ${CALDER_WARNING_FLAGS})
+    # No fused multiply-add contraction: p5.js (JavaScript) rounds after every
+    # multiplication and addition, and GCC (fast) and Clang (on) contract a*b+c
+    # into one fma by default wherever the target has FMA, which changes the
+    # last bits and lets trajectories drift from the reference. Kernels that
+    # want contraction say so after this (their options come later and win).
+    target_compile_options(${target} PRIVATE ${CALDER_WARNING_FLAGS} -ffp-contract=off)
     if(CALDER_WARNINGS_AS_ERRORS)
       target_compile_options(${target} PRIVATE -Werror)
     endif()

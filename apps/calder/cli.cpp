@@ -6,7 +6,6 @@
 #include <sstream>
 #include <string>
 
-#include "bench_command.hpp"
 #include "calder/error.hpp"
 #include "errors.hpp"
 #include "progress.hpp"
@@ -53,8 +52,6 @@ int main(int argc, const char* const* argv, std::ostream& out, std::ostream& err
   CLI::App* render = add_render_command(app, render_options);
   WindowOptions window_options;
   CLI::App* window = add_window_command(app, window_options);
-  BenchOptions bench_options;
-  CLI::App* bench = add_bench_command(app, bench_options);
 
   try {
     try {
@@ -70,10 +67,9 @@ int main(int argc, const char* const* argv, std::ostream& out, std::ostream& err
       if (run->parsed()) hint = "see 'calder run --help'";
       if (render->parsed()) hint = "see 'calder render --help'";
       if (window->parsed()) hint = "see 'calder window --help'";
-      if (bench->parsed()) hint = "see 'calder bench --help'";
       std::string what = e.what();
       if (dynamic_cast<const CLI::RequiredError*>(&e) != nullptr && argc <= 1) {
-        what = "a command is required: list, run, render, window or bench";
+        what = "a command is required: list, run, render or window";
       }
       return report(err, what + " (" + hint + ")", exit_usage);
     }
@@ -84,8 +80,6 @@ int main(int argc, const char* const* argv, std::ostream& out, std::ostream& err
       render_command(render_options, out, err);
     } else if (window->parsed()) {
       window_command(window_options, out, err);
-    } else if (bench->parsed()) {
-      bench_command(bench_options, out, err);
     } else {
       print_scene_list(out);
     }

@@ -37,11 +37,11 @@ template <typename V>
   for (std::int64_t r = 0; r < rounds; ++r) {
 #pragma GCC unroll 12
     for (std::size_t c = 0; c < kChains; ++c) acc[c] = acc[c] * a + b;  // one vfmadd each
-#if defined(__x86_64__) || defined(__i386__)
-    asm volatile("" : "+v"(a));  // keep the loop from being folded
-#else
-    asm volatile("" : : "g"(&a) : "memory");
-#endif
+    // Keep the loop from being folded: `a` may have changed. A memory operand,
+    // not a register one: Clang checks a vector register's width against the
+    // template's own (baseline) instruction set, not the caller's, and
+    // rejects 256- and 512-bit ones; the reload is off the FMA chains' path.
+    asm volatile("" : "+m"(a));
   }
   V sum = acc[0];
 #pragma GCC unroll 12

@@ -11,4 +11,5 @@
 #include "calder/scene.hpp"
 #include "calder/trajectory.hpp"
 #include "calder/vec2.hpp"
+#include "calder/version.hpp"
 #include "calder/world.hpp"

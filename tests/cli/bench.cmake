@@ -1,9 +1,10 @@
-# `calder bench`, one case per ctest (cli.bench.<CASE>): --quick runs the
+# calder-bench (bench/), one case per ctest (cli.bench.<CASE>): --quick runs the
 # whole comparison at tiny sizes and prints every table; bad flags and output
 # paths fail at once, with one line.
 #
-#   cmake -DCALDER=<exe> -DCASE=<name> -DWORK_DIR=<dir> -P bench.cmake
+#   cmake -DCALDER=<calder-bench> -DCASE=<name> -DWORK_DIR=<dir> -P bench.cmake
 cmake_minimum_required(VERSION 3.25)
+set(PROGRAM_NAME calder-bench)  # its errors start "calder-bench: "
 include("${CMAKE_CURRENT_LIST_DIR}/cli_common.cmake")
 
 # expect_contains(<text> <piece>...): each piece occurs in text.
@@ -33,13 +34,13 @@ set(pieces
     "not measured (--quick)")
 
 if(CASE STREQUAL "quick_text")
-  calder_run(bench --quick)
+  calder_run(--quick)
   if(NOT rc EQUAL 0)
     fail("expected exit 0")
   endif()
   expect_contains("${out}" ${pieces} "== targets")
 elseif(CASE STREQUAL "quick_markdown")
-  calder_run(bench --quick --format markdown --output perf.md)
+  calder_run(--quick --format markdown --output perf.md)
   if(NOT rc EQUAL 0 OR NOT out STREQUAL "")
     fail("expected exit 0 and nothing on stdout")
   endif()
@@ -47,7 +48,7 @@ elseif(CASE STREQUAL "quick_markdown")
   expect_contains("${md}" ${pieces} "## Machine" "## targets" "| what | N |" "|---|--:|")
   expect_no_output(.perf.md.tmp)
 elseif(CASE STREQUAL "only")
-  calder_run(bench --quick --only movers)
+  calder_run(--quick --only movers)
   if(NOT rc EQUAL 0)
     fail("expected exit 0")
   endif()
@@ -57,16 +58,16 @@ elseif(CASE STREQUAL "only")
     fail("--only movers printed the n-body table")
   endif()
 elseif(CASE STREQUAL "bad_format")
-  calder_run(bench --quick --format xml)
+  calder_run(--quick --format xml)
   expect_error(2 CONTAINS "--format" "xml")
 elseif(CASE STREQUAL "bad_only")
-  calder_run(bench --quick --only nbody,gpu)
+  calder_run(--quick --only nbody,gpu)
   expect_error(2 CONTAINS "--only" "nbody,gpu")
 elseif(CASE STREQUAL "bad_min_time")
-  calder_run(bench --quick --min-time 0)
+  calder_run(--quick --min-time 0)
   expect_error(2 CONTAINS "--min-time")
 elseif(CASE STREQUAL "output_missing_directory")
-  calder_run(bench --quick --output missing/perf.md)
+  calder_run(--quick --output missing/perf.md)
   expect_error(2 CONTAINS "missing/perf.md")
   expect_no_output(missing/perf.md)
 else()

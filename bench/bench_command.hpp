@@ -1,4 +1,4 @@
-// calder command: `calder bench`, calder's performance side by side with its
+// calder-bench (bench/calder_bench.cpp): calder's performance side by side with its
 // peers, measured in one run (docs/PERFORMANCE.md is its output):
 //
 //   nbody       direct summation (pairs/s; float32, float64; 1 and 2 threads)
@@ -11,9 +11,9 @@
 // then the targets, pass or miss. Each figure is the median of
 // several repetitions of at least --min-time seconds, after one warm-up.
 //
-//   calder bench                              the full run (a few minutes)
-//   calder bench --quick                      tiny sizes, a few seconds (smoke test)
-//   calder bench --only movers --format markdown --output movers.md
+//   calder-bench                              the full run (a few minutes)
+//   calder-bench --quick                      tiny sizes, a few seconds (smoke test)
+//   calder-bench --only movers --format markdown --output movers.md
 #pragma once
 
 #include <optional>
@@ -34,8 +34,8 @@ struct BenchOptions {
   std::optional<std::string> min_time;  // seconds per repetition
 };
 
-// Adds the `bench` verb with its flags to the application.
-CLI::App* add_bench_command(CLI::App& app, BenchOptions& options);
+// Adds the flags (--only, --quick, --format, --output, --min-time) to `bench`.
+void add_bench_flags(CLI::App& bench, BenchOptions& options);
 
 // Measures and prints the tables to `out` (or --output, written atomically);
 // progress lines go to `err` when it is a terminal. Throws InputError for bad

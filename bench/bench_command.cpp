@@ -256,7 +256,7 @@ class Runner {
 
   void status(const std::string& what) {
     interrupt_.check();
-    if (verbose_) err_ << "calder bench: " << what << '\n' << std::flush;
+    if (verbose_) err_ << "calder-bench: " << what << '\n' << std::flush;
   }
 
   // Calls `call` (which does some work and returns how much: pairs,
@@ -998,31 +998,28 @@ double parse_min_time(const std::string& text) {
 
 }  // namespace
 
-CLI::App* add_bench_command(CLI::App& app, BenchOptions& options) {
-  CLI::App* bench = app.add_subcommand(
-      "bench", "Measure calder against its peers (the learner's n-body, the FMA floor, Box2D)");
+void add_bench_flags(CLI::App& bench, BenchOptions& options) {
   bench
-      ->add_option("--only", options.only,
-                   "Sections to run, comma-separated: nbody, movers, barnes-hut (default: all)")
+      .add_option("--only", options.only,
+                  "Sections to run, comma-separated: nbody, movers, barnes-hut (default: all)")
       ->type_name("LIST");
-  bench->add_flag("--quick", options.quick,
-                  "Tiny sizes and times: a few seconds, rough figures (a smoke test)");
-  bench->add_option("--format", options.format, "text (default) or markdown (GitHub tables)")
+  bench.add_flag("--quick", options.quick,
+                 "Tiny sizes and times: a few seconds, rough figures (a smoke test)");
+  bench.add_option("--format", options.format, "text (default) or markdown (GitHub tables)")
       ->type_name("FORMAT");
   bench
-      ->add_option("--output", options.output,
-                   "Write the tables to FILE (atomically) instead of standard output")
+      .add_option("--output", options.output,
+                  "Write the tables to FILE (atomically) instead of standard output")
       ->type_name("FILE");
   bench
-      ->add_option("--min-time", options.min_time,
-                   "Seconds per repetition, in (0, 60] (default 0.5; --quick 0.01)")
+      .add_option("--min-time", options.min_time,
+                  "Seconds per repetition, in (0, 60] (default 0.5; --quick 0.01)")
       ->type_name("SECONDS");
-  bench->footer(
+  bench.footer(
       "The full run takes a few minutes; each figure is the median of several repetitions, "
       "after one warm-up. Progress lines go to standard error when it is a terminal.\n"
       "Exit status: 0 success (whether or not the targets are met), 1 a write failed, 2 bad "
       "usage or an output path that can't be written.\n");
-  return bench;
 }
 
 void bench_command(const BenchOptions& options, std::ostream& out, std::ostream& err) {
@@ -1057,7 +1054,7 @@ void bench_command(const BenchOptions& options, std::ostream& out, std::ostream&
     report << "## Machine\n\n";
     for (const auto& [key, value] : header) report << "- " << key << ": " << value << '\n';
   } else {
-    report << "calder bench\n";
+    report << "calder-bench\n";
     for (const auto& [key, value] : header) {
       report << "  " << key << std::string(10 - std::min<std::size_t>(key.size(), 9), ' ') << value
              << '\n';
