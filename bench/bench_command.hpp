@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // calder-bench (bench/calder_bench.cpp): calder's performance side by side with its
 // peers, measured in one run (docs/PERFORMANCE.md is its output):
 //

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // bench_movers: body-steps per second of the rain scene (built-in "rain":
 // gravity scaled by mass, quadratic drag, bounce on the radius off the walls
 // and the floor, no body-body collisions), canvas grown with N so that the

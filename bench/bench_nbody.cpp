@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // bench_nbody: mutual attraction of N bodies (calder/nbody.hpp), in pair
 // interactions per second (N^2 per evaluation: self pairs included, as the
 // kernels compute them) and Barnes-Hut evaluations per second.

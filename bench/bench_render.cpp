@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Benchmarks of the renderer (calder/render.hpp): frames per second drawing
 // example 2.7 and exercise 2.16 at 640 x 240 (scale 1) in the book's look.
 //

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // bench_run: body-steps per second of running a scene headless, the way
 // `calder run` does (Simulation::step once per frame), with no output and
 // with the CSV trajectory written to /dev/null. items_per_second is

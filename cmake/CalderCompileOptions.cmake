@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # Compile options for calder's own targets (library, examples, tests, tools).
 #
 # calder_target_defaults(<target>) gives a target calder's warnings and

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Example 2.1: Forces. A mover falls under gravity; while the mouse is held
 // down (here: frames 100 to 160, as in the p5.js reference run), wind pushes
 // it right. It bounces off the left, right and bottom edges.

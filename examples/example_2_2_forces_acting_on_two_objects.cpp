@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Example 2.2: Forces Acting on Two Objects. The same gravity and wind act on
 // a heavy mover A (mass 10) and a light one B (mass 2): the same force gives
 // the light one a larger acceleration, so it falls faster.

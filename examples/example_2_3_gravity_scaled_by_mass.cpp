@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Example 2.3: Gravity Scaled by Mass. Gravity is a force proportional to
 // mass, so the heavy and the light mover now fall together; wind (not scaled)
 // still moves the light one more. Edges count the radius (mass * 8).

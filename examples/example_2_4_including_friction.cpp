@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Example 2.4: Including Friction. A mover falls, bounces with 90% of its
 // speed, and slides along the floor; while it touches the floor, friction
 // (-mu v-hat, mu = 0.1) slows it down.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Example 2.8: Two-Body Attraction. Two bodies of equal mass attract each
 // other (G = 1, distance clamped to [5, 25]) and, starting with opposite
 // velocities, orbit their common centre.

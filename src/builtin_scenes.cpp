@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The built-in scenes: every example of chapter 2 with the book's constants,
 // initial state and order of operations (shared/spec/chapter2.md).
 #include <functional>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "calder/diagnostics.hpp"
 
 #include <cmath>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // calder: errors (see calder/error.hpp).
 #include "calder/error.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "calder/fields.hpp"
 
 #include <atomic>

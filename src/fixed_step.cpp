@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "calder/fixed_step.hpp"
 
 #include <string>

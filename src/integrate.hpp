@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Internal: the book's update for one body, shared by World::update, the
 // whole-world semi-implicit Euler step and calder::movers' kernels so that
 // all give the same bits; and the periodic wrap of a coordinate.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The world's integrators: the book's semi-implicit Euler (simultaneous and
 // sequential), velocity Verlet and classic RK4.
 #include <algorithm>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Internal: which instruction-set variant of the kernel files (calder::nbody,
 // calder::movers) a portable build (CALDER_PORTABLE=ON) should run, decided
 // once by both libraries' dispatch.cpp in the same way.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // calder: random numbers and Perlin noise that match p5.js 2.x bit for bit
 // (see calder/random.hpp and shared/spec/chapter2.md).
 #include "calder/random.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "calder/scene.hpp"
 
 #include <algorithm>

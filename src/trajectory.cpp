@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "calder/trajectory.hpp"
 
 #include "calder/error.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "calder/version.hpp"
 
 namespace calder {

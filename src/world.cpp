@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "calder/world.hpp"
 
 #include <algorithm>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Tests of calder's dynamics against closed-form physics: free fall, terminal
 // velocity under quadratic drag, a body stopped by kinetic friction, circular
 // orbits, and the attraction laws themselves.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Tests of the Box2D benchmark peer (bench/peers/box2d_rain.hpp): its run of
 // the rain scene must be the same motion as calder's rules, so that timing it
 // against calder's kernels compares like with like. The truth here is

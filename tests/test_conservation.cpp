@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Tests of the conservation laws a world obeys, and of its determinism.
 //
 //  - Linear momentum: with the simultaneous update, MutualAttraction applies

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The exercises of chapter 2 as built-in scenes: each shows what the
 // exercise asks for, checked against the physics it is about.
 #include <gtest/gtest.h>

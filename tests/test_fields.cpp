@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Tests of the fields of calder/fields.hpp, each through World::step(): one
 // step of a world holding just that field changes a body's velocity by the
 // law's force (calder/forces.hpp, called directly) / mass * dt, the way

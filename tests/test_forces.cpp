@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Tests of the force laws of calder/forces.hpp, each against values worked by
 // hand, the p5.js order of operations of shared/spec/chapter2.md, or a law of
 // physics (direction, falloff, Newton's third law).

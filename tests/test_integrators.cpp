@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Tests of the three integrators against exact solutions: their order of
 // convergence on a Kepler orbit (exact position from Kepler's equation) and
 // under quadratic drag (closed form), their long-run energy behaviour, and

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Tests of calder::movers (calder/movers.hpp), the whole-world kernels behind
 // World::step(count): book arithmetic against the plain per-body loops bit for
 // bit (every supported field, boundary and dt, a partial last batch, ragged

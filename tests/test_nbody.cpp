@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Tests of calder::nbody (calder/nbody.hpp): the reference against the core's
 // attraction law, the direct kernels against the reference (float64 to
 // rounding, float32 to its documented bound), bit-identical results for any

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The power law with a repulsive core (exercise 2.13's "other force laws"),
 // against closed forms.
 #include <gtest/gtest.h>

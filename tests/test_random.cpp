@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Tests of calder/random.hpp (and the error helpers of calder/error.hpp).
 //
 // Truth comes from three independent places:

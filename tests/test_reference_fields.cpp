@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The p5.js reference trajectories of shared/reference/, reproduced through
 // the field path: a World holding fields and a boundary, advanced by
 // world.step() alone, with no per-body code. (examples/*.cpp reproduce the

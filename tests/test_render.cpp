@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The renderer: pixels of the book's look (read back from PNG files with
 // Cairo), trails, scale and origin, overlays, animated GIFs (read back with
 // giflib), atomic 0644 files, and errors.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Scenes and Simulation: generation in the book's draw order, the mouse's
 // events, bindings, validation, and the built-in scenes.
 #include <gtest/gtest.h>

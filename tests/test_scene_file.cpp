@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Tests of scene files (calder/scene_file.hpp, docs/SCENES.md): the files of
 // scenes/ against the built-in scenes (bit-identical trajectories), to_toml's
 // round trip, every kind of error with its line and column, the defaults, the

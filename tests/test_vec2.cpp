@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Tests of calder/vec2.hpp against values worked by hand, and against values
 // printed by p5.js 2.3.4's p5.Vector under Node 20 (marked "p5.js:").
 #include <gtest/gtest.h>

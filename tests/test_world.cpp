@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Tests of the World / Mover API (calder/world.hpp), FixedStep and the
 // trajectory writer, against values worked by hand and the book's semantics
 // (shared/spec/chapter2.md).

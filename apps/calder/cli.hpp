@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // calder command: the verbs, parsed with CLI11, and the mapping of failures to
 // exit codes (see errors.hpp).
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // calder command: the two kinds of failure and their exit codes.
 //
 //   0  success

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // calder: the command line.
 //
 //   calder list                      the built-in scenes

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // calder command: an output file that appears whole or not at all.
 //
 // The data goes to a temporary file in the target's directory

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // calder command: strict parsing of the numbers and ranges given as flags.
 //
 // Each function throws InputError with one line naming the flag, what was

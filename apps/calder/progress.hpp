@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // calder command: what long jobs share: a progress bar on a terminal, and
 // Ctrl-C that stops a job cleanly (its destructors run, so temporary files
 // and half-made output are removed).

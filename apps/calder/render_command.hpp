@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // calder command: `calder render`, a scene drawn to PNG frames and/or an
 // animated GIF, headless; and the drawing flags it shares with `calder window`.
 //

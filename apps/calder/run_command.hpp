@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // calder command: `calder run` and `calder list`.
 #pragma once
 

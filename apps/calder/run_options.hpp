@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // calder command: the input flags shared by the verbs that run a scene
 // (`calder run`, and later `calder render`), and how they change a Scene.
 //

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // calder command: the scene named on the command line.
 #pragma once
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // calder command: initial states from CSV (calder run --state FILE).
 //
 // The file has the header `x,y,vx,vy,mass` or `x,y,vx,vy,mass,radius`

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // calder command: the summary `calder run` prints without --trajectory.
 #pragma once
 

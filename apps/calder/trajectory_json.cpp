@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "trajectory_json.hpp"
 
 #include <nlohmann/json.hpp>

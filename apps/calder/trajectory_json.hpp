@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // calder command: trajectories as JSON (calder run --trajectory FILE.json).
 //
 // The same rows as the CSV of calder::TrajectoryWriter, with the run's

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "window_command.hpp"
 
 #define SDL_MAIN_HANDLED

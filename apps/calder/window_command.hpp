@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // calder command: `calder window`, a scene in an SDL2 window, in real time,
 // with the book's mouse interactions.
 //

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Box2D 2.4 running calder's rain scene: see box2d_rain.hpp.
 //
 // Units. Box2D is tuned for objects of 0.1 to 10 m moving at most

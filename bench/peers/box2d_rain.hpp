@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Box2D 2.4 running calder's "rain" scene, a benchmark peer for calder's mover
 // kernels. Each frame, per body: gravity scaled by mass, quadratic drag
 // everywhere, semi-implicit Euler (Box2D's island integrator), then a bounce on

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Compiled with -ffp-contract=fast (bench/peers/CMakeLists.txt): acc * a + b
 // must be one vfmadd. Each width has its own function with its own target
 // attribute, so that a CALDER_PORTABLE build (no -march=native) measures the

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The floor of calder's n-body benchmarks: this CPU's fused multiply-add
 // throughput, measured, divided by the flops of one pair interaction of the
 // kernels (calder/nbody.hpp). No kernel can sum pairs faster than that.

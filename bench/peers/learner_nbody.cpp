@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Each class would live in its own .cpp (as each lives in its own .js file),
 // compiled without link-time optimisation: the methods are out of line
 // (noinline stands for the file boundary). In one translation unit GCC 12

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The book's example 2.9 (mutual attraction) as a learner ports it from p5.js
 // to C++: a Vector class with p5.Vector's methods, the static ones
 // (p5.Vector.sub, p5.Vector.div) returning a new vector on the heap, and Mover

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "peers/nbody_systems.hpp"
 
 #include <algorithm>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The n-body benchmarks' bodies and their yardstick: a uniform disk and a set
 // of clumps, and the relative force error of an approximate sum (Barnes-Hut)
 // against the direct float64 sum on a sample of bodies.

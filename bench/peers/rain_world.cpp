@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "peers/rain_world.hpp"
 
 #include <cmath>

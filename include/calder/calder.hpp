@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // calder: forces in 2D, after chapter 2 of The Nature of Code.
 // One include for everything public.
 #pragma once

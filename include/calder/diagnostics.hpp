@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // calder: numbers to trust a simulation by: energy, momentum, a state hash.
 #pragma once
 

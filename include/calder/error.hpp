@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // calder: errors.
 //
 // Every rejected argument (mass <= 0, dt <= 0, NaN or infinite input, ...)

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // calder: fields, the forces that act on every body of a world each step.
 //
 // A field is a plain struct of parameters; World::add stores it and returns a

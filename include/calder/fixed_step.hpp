@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // calder: a fixed time step for real-time use.
 //
 // A window redraws at the display's rate, which varies; physics stays

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // calder: the force laws of chapter 2, each one function returning a force.
 //
 // Every law lives here once. The fields of calder/fields.hpp apply them to

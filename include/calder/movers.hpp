@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // calder::movers: whole-world kernels for the per-body fields, for worlds of
 // thousands to millions of movers that don't interact (rain, particles,
 // crowds under wind and drag).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // calder::nbody: fast mutual attraction (the n-body problem) over contiguous
 // arrays, for worlds with thousands to millions of bodies.
 //

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // calder: files written atomically with mode 0644 (part of calder::render;
 // the `calder` command's trajectories use it too).
 //

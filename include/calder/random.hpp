@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // calder: random numbers and Perlin noise that match p5.js 2.x bit for bit.
 //
 // A sketch ported from p5.js starts from the same world as the original when

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // calder: drawing a world the way the book's p5.js sketches do, and saving
 // it as PNG images or an animated GIF.
 //

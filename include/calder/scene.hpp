@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // calder: scenes, worlds described as data, and the simulation that runs them.
 //
 // A Scene says everything needed to start and drive a world: the canvas, the

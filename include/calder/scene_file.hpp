@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // calder: scene files (TOML), read into a Scene and written back.
 //
 // The format is documented in docs/SCENES.md. Errors are one line naming the

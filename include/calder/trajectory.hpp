@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // calder: trajectories as CSV, `frame,body,x,y,vx,vy`.
 //
 // Numbers are written in the shortest form that reads back to the same

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // calder: Vec2, a 2D vector with the p5.Vector vocabulary of the book.
 //
 // Vec2 is a value type: copying it copies the numbers. A function that takes a

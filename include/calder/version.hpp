@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // calder's version, for the preprocessor and at run time. CMake checks that
 // these numbers are project(VERSION) of CMakeLists.txt.
 #pragma once

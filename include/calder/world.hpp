@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // calder: the world, its bodies, and the book-style Mover handle.
 //
 // A World keeps its bodies in contiguous arrays (one array per quantity), so

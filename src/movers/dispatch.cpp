@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // calder::movers: picks the tile kernels (kernels_book.cpp and
 // kernels_fast.cpp, compiled per instruction set) for the running CPU, once.
 // The same variants and the same choice as calder::nbody (src/nbody/dispatch.cpp):

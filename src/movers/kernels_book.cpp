@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // calder::movers: the book-arithmetic tile kernel (kernels_impl.hpp).
 //
 // Compiled once per instruction set (CMakeLists.txt, calder_movers) with

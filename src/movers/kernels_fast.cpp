@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // calder::movers: the float64 and float32 tile kernels (kernels_impl.hpp).
 //
 // Compiled once per instruction set (CMakeLists.txt, calder_movers) with

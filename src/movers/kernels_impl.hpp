@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // calder::movers: the tile kernels (see plan.hpp), as templates over the
 // precision R and the arithmetic: kBook = true repeats the book's operations
 // in its order (World's plain loops, calder/forces.hpp), kBook = false is the

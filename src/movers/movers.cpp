@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // calder::movers: the whole-world batch stepper (see calder/movers.hpp):
 // compiles the fields, cuts the bodies into tiles and hands the tiles to
 // threads; each tile runs the whole batch in one kernel call.

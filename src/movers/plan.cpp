@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // calder::movers: compiles a batch's fields into passes (see plan.hpp).
 #include "plan.hpp"
 

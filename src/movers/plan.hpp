@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // calder::movers internals: a batch's fields compiled into a list of passes
 // (plan.cpp), and the kernels that run them over one tile (kernels_*.cpp,
 // compiled per instruction set, chosen at run time by dispatch.cpp).

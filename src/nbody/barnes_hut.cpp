@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // calder::nbody: Barnes-Hut on a quadtree of Morton-sorted bodies (see
 // calder/nbody.hpp for the algorithm and its guarantees).
 //

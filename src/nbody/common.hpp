@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // calder::nbody internals shared by direct.cpp and barnes_hut.cpp:
 // validation, threads, the law's parameters, the float32 frame.
 #pragma once

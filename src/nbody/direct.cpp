@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // calder::nbody: validation, the reference sum and direct summation.
 #include <algorithm>
 #include <cfloat>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // calder::nbody: picks the kernel variant (kernels.cpp compiled per
 // instruction set) for the running CPU, once.
 //

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // calder::nbody::install(): the fast methods of MutualAttraction
 // (NBodyMethod::direct, NBodyMethod::barnes_hut) through the core's hook
 // (calder/fields.hpp, set_mutual_attraction_backend).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // calder::nbody: the pair-sum kernels (see kernels.hpp).
 //
 // This file is compiled once per instruction-set variant (CMakeLists.txt,

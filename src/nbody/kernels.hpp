@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // calder::nbody internals: the pair-sum kernels, compiled once per instruction
 // set (src/nbody/kernels.cpp) and chosen at run time (dispatch.cpp).
 //

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // calder render: drawing a world into a Cairo image, and PNG output.
 #include <cairo.h>
 #include <dlfcn.h>

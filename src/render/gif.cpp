@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // calder render: animated GIF output (giflib), with exact palettes when a
 // frame has at most 256 colours and libimagequant's otherwise.
 #include <gif_lib.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "calder/output_file.hpp"
 
 #include <fcntl.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // calder render: styles, and the look of the book's examples.
 #include <cmath>
 #include <string>

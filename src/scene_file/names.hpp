@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // calder scene files: the spelling of every enumeration in a scene file,
 // shared by the reader and the writer so that the two cannot drift apart.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // calder scene files: the reader (see calder/scene_file.hpp and docs/SCENES.md).
 //
 // toml++ parses the text and keeps the line and column of every key and

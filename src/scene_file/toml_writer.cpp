@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // calder scene files: the writer, to_toml (see calder/scene_file.hpp).
 //
 // Writes the keys in the order docs/SCENES.md describes them, every number in

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # Bad input to `calder run`, one case per ctest (cli.bad_input.<CASE>): each
 # must exit 2 (1 for runtime_failure) with one line on stderr naming the file
 # or flag and the problem, and must leave no output file (out.csv) behind.

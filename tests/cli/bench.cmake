@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # calder-bench (bench/), one case per ctest (cli.bench.<CASE>): --quick runs the
 # whole comparison at tiny sizes and prints every table; bad flags and output
 # paths fail at once, with one line.

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # Helpers for the CLI test scripts (included by bad_input.cmake and output.cmake).
 include_guard(GLOBAL)
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Unit tests of the calder command's parts (apps/calder): flag parsing, the
 // --state reader, atomic output files, JSON trajectories, the verbs in process.
 #include <gtest/gtest.h>

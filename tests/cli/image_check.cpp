@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Checks an image written by `calder render` or `calder window` (tests/cli).
 //
 //   image_check FILE [CHECK...]

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # Helpers for render.cmake and window.cmake (after cli_common.cmake).
 include_guard(GLOBAL)
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // cli_json_check: checks a JSON trajectory written by `calder run` against the
 // CSV trajectory of the same run.
 //

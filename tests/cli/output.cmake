@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # What `calder` writes when it succeeds, one case per ctest (cli.output.<CASE>).
 #
 #   cmake -DCALDER=<exe> -DCASE=<name> -DWORK_DIR=<dir> [-DJSON_CHECK=<exe>]

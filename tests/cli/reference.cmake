@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # Runs `calder run` on the built-in scene of a p5.js reference and compares the
 # trajectory with trajectory_diff. Everything comes from the reference's
 # scenario.json, so a new reference folder needs no edit here:

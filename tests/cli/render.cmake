@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # `calder render`, one case per ctest (cli.render.<CASE>): what it writes (PNG
 # frames, GIFs, read back with image_check), and bad input: exit 2 (1 when the
 # run fails midway), one line on stderr, and nothing left behind.

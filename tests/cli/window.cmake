@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # `calder window`, one case per ctest (window.<CASE>, label window).
 #
 #   no_display, bad_display, bad_input   exit 2 with one line, no display needed

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # Drives `calder window` with xdotool, inside an X display made by xvfb-run
 # (window.cmake runs: xvfb-run -a -s "-screen 0 1024x768x24" bash window_xvfb.sh ...).
 #

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # Fails when a C++ file of the project is not formatted by .clang-format.
 # Usage: cmake -DROOT=<source dir> -DCLANG_FORMAT=<path> -P check_format.cmake
 file(GLOB_RECURSE files "${ROOT}/include/*.hpp" "${ROOT}/src/*.cpp" "${ROOT}/src/*.hpp"

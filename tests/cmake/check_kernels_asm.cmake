@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # lint.movers_kernels_asm: reads the machine code of calder::movers' kernel
 # objects (objdump) and checks what the source promises:
 #   - the book kernels contain no fused multiply-add (they must round every

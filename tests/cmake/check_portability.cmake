@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # Fails when the core library (include/calder, src) uses what Emscripten
 # 3.1.6's libc++ 13 lacks: a browser build must reuse the core unchanged.
 # Usage: cmake -DROOT=<source dir> -P check_portability.cmake

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # Runs an example and compares its stdout with a p5.js reference trajectory.
 #
 #   cmake -DEXAMPLE=<exe> -DTRAJECTORY_DIFF=<exe> -DREFERENCE=<csv> -DOUTPUT=<csv>

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # Checks trajectory_diff's verdicts and exit codes on small hand-written files.
 #
 #   cmake -DTRAJECTORY_DIFF=<exe> -DWORK_DIR=<scratch folder> -P trajectory_diff_selftest.cmake

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // trajectory_diff: compares a candidate trajectory CSV with a reference one.
 //
 //   trajectory_diff REFERENCE.csv CANDIDATE.csv [--tolerance 1e-9]
