@@ -322,6 +322,27 @@ class NearestColor {
   std::vector<double> keys_;
 };
 
+// Wu's boxes cannot split a histogram cell, so a frame with a few hundred
+// colours may get fewer boxes than palette entries: the free entries start
+// at the colours that the boxes' means serve worst (pixel count times
+// squared distance), for k-means to settle.
+void fill_free_entries(const ColorCounts& counts, std::size_t max_colors,
+                       std::vector<Rgb>& centres) {
+  if (centres.size() >= max_colors) return;
+  std::vector<std::pair<double, std::size_t>> worst;  // (-error, colour), for an ascending sort
+  {
+    const NearestColor nearest(centres);
+    for (std::size_t i = 0; i < counts.colors.size(); ++i) {
+      const Rgb c = rgb_of(counts.colors[i]);
+      const double error = counts.counts[i] * distance2(centres[nearest.find(c)], c);
+      if (error > 0.0) worst.emplace_back(-error, i);
+    }
+  }
+  const std::size_t take = std::min(max_colors - centres.size(), worst.size());
+  std::partial_sort(worst.begin(), worst.begin() + static_cast<std::ptrdiff_t>(take), worst.end());
+  for (std::size_t k = 0; k < take; ++k) centres.push_back(rgb_of(counts.colors[worst[k].second]));
+}
+
 // Lloyd's iterations: each distinct colour joins its nearest centre, each
 // centre moves to its members' weighted mean (an empty one stays), until no
 // colour changes centre.
@@ -372,6 +393,7 @@ std::vector<std::uint32_t> quantize(const std::uint32_t* pixels, int w, int h,
 
   const ColorCounts counts = count_colors(pixels, w, h, stride);
   std::vector<Rgb> centres = WuQuantizer(counts).palette(max_colors);
+  fill_free_entries(counts, static_cast<std::size_t>(max_colors), centres);
   refine(counts, centres);
   std::vector<Rgb> rounded;
   for (const Rgb& c : centres) {
