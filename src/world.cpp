@@ -17,6 +17,11 @@ namespace {
 
 constexpr double kNoFriction = std::numeric_limits<double>::quiet_NaN();
 
+// "(the world has 1 body)", "(the world has 0 bodies)": the end of an out-of-range message.
+std::string world_has(std::size_t count, const char* one, const char* many) {
+  return " (the world has " + std::to_string(count) + " " + (count == 1 ? one : many) + ")";
+}
+
 void require_finite_vec(Vec2 v, const char* where, const char* what) {
   detail::require_finite(v.x, where, what);
   detail::require_finite(v.y, where, what);
@@ -51,7 +56,7 @@ World::World(const WorldDef& def) : def_(def), random_(def.seed), noise_(def.see
 std::size_t World::checked(BodyId id, const char* where) const {
   if (id.index >= x_.size()) {
     throw Error(std::string(where) + ": no body with id " + std::to_string(id.index) +
-                " (the world has " + std::to_string(x_.size()) + " bodies)");
+                world_has(x_.size(), "body", "bodies"));
   }
   return id.index;
 }
@@ -82,8 +87,8 @@ Mover World::mover(BodyId id) {
 
 BodyId World::body(std::size_t index) const {
   if (index >= x_.size()) {
-    throw Error("World::body: index " + std::to_string(index) + " out of range (the world has " +
-                std::to_string(x_.size()) + " bodies)");
+    throw Error("World::body: index " + std::to_string(index) + " out of range" +
+                world_has(x_.size(), "body", "bodies"));
   }
   return BodyId{static_cast<std::uint32_t>(index)};
 }
@@ -282,8 +287,8 @@ Field& World::add_field(Field field) {
 
 Field& World::field(std::size_t index) {
   if (index >= fields_.size()) {
-    throw Error("World::field: index " + std::to_string(index) + " out of range (the world has " +
-                std::to_string(fields_.size()) + " fields)");
+    throw Error("World::field: index " + std::to_string(index) + " out of range" +
+                world_has(fields_.size(), "field", "fields"));
   }
   return fields_[index];
 }

@@ -712,6 +712,20 @@ TEST(WorldBodies, MoverAttractIsTheAttractionLaw) {
   EXPECT_EQ(f.x, 0.0);
 }
 
+TEST(WorldBodies, OutOfRangeMessagesCountBodiesAndFieldsInTheRightNumber) {
+  World world;
+  expect_error([&] { (void)world.body(0); }, {"World::body", "(the world has 0 bodies)"});
+  world.add_body({.position = {1.0, 1.0}});
+  expect_error([&] { (void)world.body(1); }, {"World::body", "(the world has 1 body)"});
+  expect_error([&] { (void)world.position(BodyId{3}); }, {"no body with id 3", "has 1 body)"});
+  world.add_body({.position = {2.0, 2.0}});
+  expect_error([&] { (void)world.body(2); }, {"(the world has 2 bodies)"});
+  world.add(calder::Gravity{});
+  expect_error([&] { (void)world.field(1); }, {"World::field", "(the world has 1 field)"});
+  world.add(calder::Drag{});
+  expect_error([&] { (void)world.field(5); }, {"(the world has 2 fields)"});
+}
+
 TEST(WorldBodies, ClearBodies) {
   World world;
   world.add_body({.position = {1.0, 1.0}});
