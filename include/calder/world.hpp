@@ -74,10 +74,11 @@ struct Boundary {
 
   static Boundary none() { return {}; }
   static Boundary bounce(double restitution = 1.0, bool use_radius = false, Edges edges = {}) {
-    return {BoundaryKind::bounce, restitution, use_radius, edges, BoundaryTiming::after_update};
+    return {BoundaryKind::bounce,         restitution, use_radius, edges,
+            BoundaryTiming::after_update, 0.0,         true};
   }
   static Boundary wrap(bool use_radius = false) {
-    return {BoundaryKind::wrap, 1.0, use_radius, {}, BoundaryTiming::after_update};
+    return {BoundaryKind::wrap, 1.0, use_radius, {}, BoundaryTiming::after_update, 0.0, true};
   }
   void validate(const char* where) const;
 };
