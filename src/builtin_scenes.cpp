@@ -201,16 +201,26 @@ Scene exercise_2_16() {
 // --- the exercises (constants are calder's where the book leaves them open) ---
 
 Scene exercise_2_1() {
-  // The book's solution: helium (0, -0.02), wind map(noise(t), 0, 1, -0.01, 0.01)
-  // with t from 1000 in steps of 0.01, a 48 px balloon losing a quarter of its
-  // speed at the ceiling.
+  // The book's solution (nature_of_code_exercise_2_1_solution), step for
+  // step: the ceiling check first in draw(), if (y - d/2 - strokeWeight < 0)
+  // { y = d/2 - strokeWeight + 2; vy *= -0.75 }, i.e. a wall 1 px (the
+  // stroke) below the top that puts the balloon at y = 25; helium (0, -0.02);
+  // wind map(noise(noiseX), 0, 1, -0.01, 0.01) with noiseX from 1000 and
+  // noiseX += 0.01 after each frame; vel.limit(5); the sides wrap to the
+  // other edge. noiseSeed(seed) is the scene's seed.
   Scene s = base("exercise-2.1",
-                 "A helium balloon drifts in Perlin-noise wind and bounces off the ceiling");
+                 "A helium balloon rises in Perlin-noise wind, bounces off the ceiling and wraps "
+                 "around the sides");
   s.bodies.push_back(one_body({320.0, 120.0}, 1.0, fixed_radius(24.0)));
   s.fields.push_back(field(Helium{.lift = 0.02}));
-  s.fields.push_back(field(NoiseWind{.strength = 0.01, .rate = 0.01, .offset = 1000.0}));
-  s.world.boundary =
-      Boundary::bounce(0.75, true, {.left = true, .right = true, .top = true, .bottom = false});
+  s.fields.push_back(
+      field(NoiseWind{.strength = 0.01, .rate = 0.01, .offset = 1000.0, .accumulate = true}));
+  s.edges_first = Boundary::bounce(0.75, true, {.left = false, .right = false, .bottom = false});
+  s.edges_first.inset = 1.0;
+  s.world.boundary = Boundary::wrap(false);
+  s.world.boundary.edges = {.top = false, .bottom = false};
+  s.world.boundary.periodic = false;
+  s.world.max_speed = 5.0;
   return s;
 }
 

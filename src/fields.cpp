@@ -236,7 +236,9 @@ void accumulate(const Field& field, const FieldContext& c, std::size_t first, st
           [&](const NoiseWind& f) {
             if (!f.enabled) return;
             if (c.noise == nullptr) throw Error("field noise_wind: the world has no noise");
-            accumulate_uniform(noise_wind(*c.noise, c.time, f.strength, f.rate, f.offset), c, first,
+            // Accumulating: the noise is read at offset itself (0 * rate adds nothing).
+            const double time = f.accumulate ? 0.0 : c.time;
+            accumulate_uniform(noise_wind(*c.noise, time, f.strength, f.rate, f.offset), c, first,
                                last, ax, ay);
           },
           [&](const Helium& f) {

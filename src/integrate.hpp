@@ -6,6 +6,8 @@
 
 #include <cmath>
 
+#include "calder/vec2.hpp"
+
 namespace calder::detail {
 
 // Internal linkage: calder::movers' kernels include this file in translation
@@ -25,6 +27,21 @@ inline void kick_drift(Real& x, Real& y, Real& vx, Real& vy, Real& ax, Real& ay,
   y += vy * dt;
   ax = Real{};  // zero (also for calder::movers' vector types)
   ay = Real{};
+}
+
+// kick_drift with, when top_speed > 0, p5's vel.limit(topSpeed) between the
+// kick and the drift (the book's Mover with a top speed); the World's update.
+inline void book_update(double& x, double& y, double& vx, double& vy, double& ax, double& ay,
+                        double dt, double top_speed) {
+  if (top_speed <= 0.0) return kick_drift(x, y, vx, vy, ax, ay, dt);
+  Vec2 v{vx + ax * dt, vy + ay * dt};
+  v.limit(top_speed);
+  vx = v.x;
+  vy = v.y;
+  x += vx * dt;
+  y += vy * dt;
+  ax = 0.0;
+  ay = 0.0;
 }
 
 // Moves a coordinate that left [lo, hi] back in from the other side.

@@ -16,7 +16,7 @@ void World::step_euler_simultaneous() {
   const bool before = def_.boundary.timing == BoundaryTiming::before_update;
   for (std::size_t i = 0; i < n; ++i) {
     if (before) boundary_one(i, def_.boundary);
-    detail::kick_drift(x_[i], y_[i], vx_[i], vy_[i], ax_[i], ay_[i], dt);
+    detail::book_update(x_[i], y_[i], vx_[i], vy_[i], ax_[i], ay_[i], dt, def_.max_speed);
     if (!before) boundary_one(i, def_.boundary);
   }
 }
@@ -29,7 +29,7 @@ void World::step_euler_sequential() {
     // Forces on body i see the bodies before i already moved (example 2.9).
     accumulate_fields(context(bodies(), time_), i, i + 1, ax_, ay_);
     if (before) boundary_one(i, def_.boundary);
-    detail::kick_drift(x_[i], y_[i], vx_[i], vy_[i], ax_[i], ay_[i], dt);
+    detail::book_update(x_[i], y_[i], vx_[i], vy_[i], ax_[i], ay_[i], dt, def_.max_speed);
     if (!before) boundary_one(i, def_.boundary);
   }
 }

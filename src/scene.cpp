@@ -92,6 +92,11 @@ void Scene::validate() const {
   detail::require_positive(world.height, where.c_str(), "height");
   detail::require_positive(world.dt, where.c_str(), "dt");
   world.boundary.validate(where.c_str());
+  edges_first.validate((where + ": edges_first").c_str());
+  detail::require_non_negative(world.max_speed, where.c_str(), "max_speed");
+  if (world.max_speed > 0.0 && world.integrator != Integrator::semi_implicit_euler) {
+    throw Error(where + ": max_speed needs the semi_implicit_euler integrator");
+  }
   if (world.update_order == UpdateOrder::sequential &&
       world.integrator != Integrator::semi_implicit_euler) {
     throw Error(where + ": the sequential update order needs the semi_implicit_euler integrator");
@@ -280,6 +285,11 @@ void Simulation::step(const InputState& input) {
   }
   was_pressed_ = input.mouse_pressed;
   last_mouse_ = input.mouse;
+  if (scene_.edges_first.kind != BoundaryKind::none) {
+    for (std::size_t i = 0; i < world_.body_count(); ++i) {
+      world_.apply_boundary(world_.body(i), scene_.edges_first);
+    }
+  }
   world_.step();
   if (tossed_) {
     // Held: the body sits under the mouse and moves with it.

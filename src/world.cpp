@@ -18,6 +18,11 @@ namespace {
 
 constexpr double kNoFriction = std::numeric_limits<double>::quiet_NaN();
 
+// "(the world has 1 body)", "(the world has 0 bodies)": the end of an out-of-range message.
+std::string world_has(std::size_t count, const char* one, const char* many) {
+  return " (the world has " + std::to_string(count) + " " + (count == 1 ? one : many) + ")";
+}
+
 void require_finite_vec(Vec2 v, const char* where, const char* what) {
   detail::require_finite(v.x, where, what);
   detail::require_finite(v.y, where, what);
@@ -37,6 +42,7 @@ void validate_body(const BodyDef& def, const char* where) {
 void Boundary::validate(const char* where) const {
   const std::string w = std::string(where) + ": boundary";
   detail::require_non_negative(restitution, w.c_str(), "restitution");
+  detail::require_non_negative(inset, w.c_str(), "inset");
 }
 
 World::World(const WorldDef& def) : def_(def), random_(def.seed), noise_(def.seed) {
@@ -44,6 +50,7 @@ World::World(const WorldDef& def) : def_(def), random_(def.seed), noise_(def.see
   detail::require_positive(def.height, "World", "height");
   detail::require_positive(def.dt, "World", "dt");
   def.boundary.validate("World");
+  detail::require_non_negative(def.max_speed, "World", "max_speed");
   if (def.threads < 0) {
     throw Error("World: threads must be >= 0 (got " + std::to_string(def.threads) + ")");
   }
@@ -52,7 +59,7 @@ World::World(const WorldDef& def) : def_(def), random_(def.seed), noise_(def.see
 std::size_t World::checked(BodyId id, const char* where) const {
   if (id.index >= x_.size()) {
     throw Error(std::string(where) + ": no body with id " + std::to_string(id.index) +
-                " (the world has " + std::to_string(x_.size()) + " bodies)");
+                world_has(x_.size(), "body", "bodies"));
   }
   return id.index;
 }
@@ -83,8 +90,8 @@ Mover World::mover(BodyId id) {
 
 BodyId World::body(std::size_t index) const {
   if (index >= x_.size()) {
-    throw Error("World::body: index " + std::to_string(index) + " out of range (the world has " +
-                std::to_string(x_.size()) + " bodies)");
+    throw Error("World::body: index " + std::to_string(index) + " out of range" +
+                world_has(x_.size(), "body", "bodies"));
   }
   return BodyId{static_cast<std::uint32_t>(index)};
 }
@@ -171,7 +178,7 @@ void World::update(BodyId id) {
   double vy = vy_[i];
   double ax = ax_[i];
   double ay = ay_[i];
-  detail::kick_drift(x, y, vx, vy, ax, ay, def_.dt);
+  detail::book_update(x, y, vx, vy, ax, ay, def_.dt, def_.max_speed);
   if (!std::isfinite(x) || !std::isfinite(y) || !std::isfinite(vx) || !std::isfinite(vy)) {
     throw Error("World::update: body " + std::to_string(i) +
                 " would get a non-finite position or velocity (overflow); left unchanged");
@@ -202,23 +209,36 @@ void World::boundary_one(std::size_t i, const Boundary& b) {
     case BoundaryKind::bounce: {
       // The book's order: right before left, bottom before top; clamp, then reverse.
       const double reverse = -b.restitution;
-      if (b.edges.right && x_[i] > w - r) {
-        x_[i] = w - r;
+      const double near = r + b.inset;  // the walls, in from each side
+      if (b.edges.right && x_[i] > w - near) {
+        x_[i] = w - near;
         vx_[i] *= reverse;
-      } else if (b.edges.left && x_[i] < r) {
-        x_[i] = r;
+      } else if (b.edges.left && x_[i] < near) {
+        x_[i] = near;
         vx_[i] *= reverse;
       }
-      if (b.edges.bottom && y_[i] > h - r) {
-        y_[i] = h - r;
+      if (b.edges.bottom && y_[i] > h - near) {
+        y_[i] = h - near;
         vy_[i] *= reverse;
-      } else if (b.edges.top && y_[i] < r) {
-        y_[i] = r;
+      } else if (b.edges.top && y_[i] < near) {
+        y_[i] = near;
         vy_[i] *= reverse;
       }
       return;
     }
     case BoundaryKind::wrap:
+      if (!b.periodic) {
+        // The book's two checks per axis (exercise 2.1: if (x > width) x = 0; if (x < 0) x =
+        // width).
+        auto to_other_side = [](double& v, double lo, double hi) {
+          if (v > hi) v = lo;
+          if (v < lo) v = hi;
+        };
+        // 0 - r: +0 rather than -0 when r is 0, as the sketch's x = 0.
+        if (b.edges.left || b.edges.right) to_other_side(x_[i], 0.0 - r, w + r);
+        if (b.edges.top || b.edges.bottom) to_other_side(y_[i], 0.0 - r, h + r);
+        return;
+      }
       if (b.edges.left || b.edges.right) x_[i] = detail::wrap_coordinate(x_[i], -r, w + r);
       if (b.edges.top || b.edges.bottom) y_[i] = detail::wrap_coordinate(y_[i], -r, h + r);
       return;
@@ -283,8 +303,8 @@ Field& World::add_field(Field field) {
 
 Field& World::field(std::size_t index) {
   if (index >= fields_.size()) {
-    throw Error("World::field: index " + std::to_string(index) + " out of range (the world has " +
-                std::to_string(fields_.size()) + " fields)");
+    throw Error("World::field: index " + std::to_string(index) + " out of range" +
+                world_has(fields_.size(), "field", "fields"));
   }
   return fields_[index];
 }
@@ -327,6 +347,9 @@ void World::check_step_settings() const {
       throw Error(std::string("World::step: ") + e.what());
     }
   }
+  if (def_.max_speed > 0.0 && def_.integrator != Integrator::semi_implicit_euler) {
+    throw Error("World::step: max_speed needs the semi_implicit_euler integrator");
+  }
   if (def_.update_order == UpdateOrder::sequential &&
       def_.integrator != Integrator::semi_implicit_euler) {
     throw Error(
@@ -359,15 +382,41 @@ void World::step_one() {
   }
   time_ += def_.dt;
   ++step_count_;
+  advance_noise(1);
+}
+
+void World::advance_noise(int steps) {
+  for (Field& field : fields_) {
+    auto* wind = std::get_if<NoiseWind>(&field);
+    if (wind == nullptr || !wind->accumulate) continue;
+    for (int k = 0; k < steps; ++k) wind->offset += wind->rate;  // one addition a step, as p5
+  }
+}
+
+std::string World::needs_plain_loops() const {
+  if (def_.max_speed > 0.0) return "a speed limit (max_speed)";
+  if (def_.boundary.inset != 0.0 || !def_.boundary.periodic) {
+    return "a boundary with an inset or a non-periodic wrap";
+  }
+  for (const Field& field : fields_) {
+    const auto* wind = std::get_if<NoiseWind>(&field);
+    if (wind != nullptr && wind->accumulate) return "an accumulating noise_wind";
+  }
+  return {};
 }
 
 void World::step(int count) {
   if (count < 0) throw Error("World::step: count must be >= 0 (got " + std::to_string(count) + ")");
   if (count == 0) return;
   const bool book = def_.arithmetic == Arithmetic::book;
+  const std::string plain_only = needs_plain_loops();
+  if (!book && !plain_only.empty()) {
+    throw Error(std::string("World::step: arithmetic ") + arithmetic_name(def_.arithmetic) +
+                " has no kernel for " + plain_only);
+  }
   const bool batchable = def_.integrator == Integrator::semi_implicit_euler &&
                          def_.update_order == UpdateOrder::simultaneous &&
-                         batch_backend.load() != nullptr;
+                         batch_backend.load() != nullptr && plain_only.empty();
   if (!book && !batchable) {
     throw Error(std::string("World::step: arithmetic ") + arithmetic_name(def_.arithmetic) +
                 (batch_backend.load() == nullptr

@@ -485,6 +485,76 @@ TEST(WorldBoundary, WrapOnTheRadius) {
   EXPECT_EQ(down.position(), (Vec2{50.0, -9.5}));      // 250.5 - 260
 }
 
+TEST(WorldBoundary, WrapToTheOtherEdgeWhenNotPeriodic) {
+  // The book's rule (exercise 2.1): past the right edge, x = 0 (+0, not -0);
+  // past the left, x = width; y only when top or bottom is listed.
+  Boundary wrap = Boundary::wrap();
+  wrap.periodic = false;
+  wrap.edges = {.top = false, .bottom = false};
+  World world({.boundary = wrap});
+  Mover r = world.add_mover({.position = {639.5, 100.0}, .velocity = {1.0, 0.0}});
+  Mover l = world.add_mover({.position = {0.5, 100.0}, .velocity = {-1.0, 0.0}});
+  Mover b = world.add_mover({.position = {100.0, 239.5}, .velocity = {0.0, 1.0}});
+  world.step();
+  EXPECT_EQ(std::bit_cast<std::uint64_t>(r.position().x), std::bit_cast<std::uint64_t>(0.0));
+  EXPECT_EQ(l.position(), (Vec2{640.0, 100.0}));
+  EXPECT_EQ(b.position(), (Vec2{100.0, 240.5}));  // not wrapped: top and bottom are off
+  EXPECT_EQ(r.velocity(), (Vec2{1.0, 0.0}));
+  // On the radius: a circle of radius 10 goes to x = -10 once past 650.
+  wrap.use_radius = true;
+  World round({.boundary = wrap});
+  Mover gone = round.add_mover({.position = {649.5, 50.0}, .velocity = {1.0, 0.0}, .radius = 10.0});
+  round.step();
+  EXPECT_EQ(gone.position(), (Vec2{-10.0, 50.0}));
+}
+
+TEST(WorldBoundary, BounceInsetMovesTheWallsIn) {
+  // Walls 1 px inside the canvas, on the radius 24: the balloon of exercise
+  // 2.1 is put at y = 25 once above it, its vertical speed times -0.75.
+  Boundary ceiling = Boundary::bounce(0.75, true, {.left = false, .right = false, .bottom = false});
+  ceiling.inset = 1.0;
+  World world({.boundary = ceiling});
+  Mover up = world.add_mover({.position = {100.0, 25.5}, .velocity = {0.0, -1.0}, .radius = 24});
+  Mover stays = world.add_mover({.position = {200.0, 27.0}, .velocity = {0.0, -1.0}, .radius = 24});
+  world.step();
+  EXPECT_EQ(up.position(), (Vec2{100.0, 25.0}));
+  EXPECT_EQ(up.velocity(), (Vec2{0.0, 0.75}));
+  EXPECT_EQ(stays.position(), (Vec2{200.0, 26.0}));  // 26 > 25: no bounce
+  ceiling.inset = -1.0;
+  expect_error([&] { World bad({.boundary = ceiling}); }, {"boundary", "inset"});
+}
+
+TEST(WorldMaxSpeed, LimitsTheSpeedLikeP5sLimitBetweenKickAndDrift) {
+  // p5: vel.add(acc); vel.limit(5): if |v|^2 > 25, v = v / |v| * 5; pos.add(vel).
+  World world({.max_speed = 5.0});
+  Mover fast = world.add_mover({.position = {100.0, 100.0}, .velocity = {3.0, 3.0}, .mass = 2});
+  Mover slow = world.add_mover({.position = {100.0, 100.0}, .velocity = {1.0, 0.0}});
+  fast.apply_force({2.0, 0.5});  // a = (1, 0.25)
+  slow.apply_force({0.5, 0.0});
+  world.step();
+  const double vx = 3.0 + 1.0;
+  const double vy = 3.0 + 0.25;
+  const double m = std::sqrt(vx * vx + vy * vy);
+  const Vec2 limited{vx / m * 5.0, vy / m * 5.0};
+  EXPECT_EQ(fast.velocity(), limited);
+  EXPECT_EQ(fast.position(), (Vec2{100.0 + limited.x, 100.0 + limited.y}));
+  EXPECT_EQ(slow.velocity(), (Vec2{1.5, 0.0}));  // under the limit: untouched
+  // Mover::update (book style) limits the same way.
+  World book({.max_speed = 5.0});
+  Mover single = book.add_mover({.velocity = {3.0, 3.0}, .mass = 2});
+  single.apply_force({2.0, 0.5});
+  single.update();
+  EXPECT_EQ(single.velocity(), limited);
+  // Only the book's integrator and arithmetic know it.
+  World verlet({.integrator = calder::Integrator::velocity_verlet, .max_speed = 5.0});
+  verlet.add_body({});
+  expect_error([&] { verlet.step(); }, {"max_speed", "semi_implicit_euler"});
+  World float64({.arithmetic = calder::Arithmetic::float64, .max_speed = 5.0});
+  float64.add_body({});
+  expect_error([&] { float64.step(); }, {"float64", "max_speed"});
+  expect_error([&] { World bad({.max_speed = -1.0}); }, {"World", "max_speed"});
+}
+
 TEST(WorldBoundary, TimingBeforeOrAfterTheUpdate) {
   // Body outside the right edge at x = 640.5 moving right at 1.
   // before_update: bounce (x = 640, vx = -1), then update: x = 639.
@@ -711,6 +781,20 @@ TEST(WorldBodies, MoverAttractIsTheAttractionLaw) {
   const Vec2 f = a.attract(b);
   EXPECT_NEAR(f.y, -0.3, 1e-16);
   EXPECT_EQ(f.x, 0.0);
+}
+
+TEST(WorldBodies, OutOfRangeMessagesCountBodiesAndFieldsInTheRightNumber) {
+  World world;
+  expect_error([&] { (void)world.body(0); }, {"World::body", "(the world has 0 bodies)"});
+  world.add_body({.position = {1.0, 1.0}});
+  expect_error([&] { (void)world.body(1); }, {"World::body", "(the world has 1 body)"});
+  expect_error([&] { (void)world.position(BodyId{3}); }, {"no body with id 3", "has 1 body)"});
+  world.add_body({.position = {2.0, 2.0}});
+  expect_error([&] { (void)world.body(2); }, {"(the world has 2 bodies)"});
+  world.add(calder::Gravity{});
+  expect_error([&] { (void)world.field(1); }, {"World::field", "(the world has 1 field)"});
+  world.add(calder::Drag{});
+  expect_error([&] { (void)world.field(5); }, {"(the world has 2 fields)"});
 }
 
 TEST(WorldBodies, ClearBodies) {

@@ -87,6 +87,11 @@ struct NoiseWind {
   double rate = 0.01;
   double offset = 0.0;
   bool enabled = true;
+  // false: the wind at time t is noise(offset + t * rate). true: offset is
+  // where the noise is read now, and the world adds rate to it after every
+  // step, as a sketch's `noiseX += 0.01` (the sum drifts from offset + t * rate
+  // in the last bits; exercise 2.1).
+  bool accumulate = false;
 };
 
 struct Helium {

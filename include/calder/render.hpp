@@ -24,7 +24,7 @@
 //
 // Files are written atomically (a temporary file in the same folder, then a
 // rename) with mode 0644; failures throw calder::Error naming the path and
-// leave no file behind. Needs Cairo, libimagequant and giflib (the
+// leave no file behind. Needs Cairo and giflib (the
 // calder::render CMake target); the core library does not.
 #pragma once
 
@@ -202,8 +202,9 @@ class Canvas {
 //
 // Each frame gets its own palette: the exact colours when the frame (the
 // part that changed since the last frame) has at most 256, as every
-// gray-only scene does, with no dithering or rounding; otherwise a palette
-// chosen by libimagequant. Transparent pixels are flattened onto white.
+// gray-only scene does, with no dithering or rounding; otherwise 256
+// colours chosen by calder's quantiser (Wu's cuts refined by k-means, no
+// dithering: src/render/quantize.hpp). Transparent pixels are flattened onto white.
 class GifWriter {
  public:
   // width x height pixels (a canvas's pixel_width() x pixel_height()), fps

@@ -146,6 +146,10 @@ struct Scene {
   // translate(width / 2, height / 2)); only drawing uses it.
   Vec2 origin{};
   SceneLook look{};
+  // A boundary rule applied to every body at the start of each frame, before
+  // the forces: a sketch that checks its edges first thing in draw()
+  // (exercise 2.1's ceiling). Its timing is not used. Kind none: no rule.
+  Boundary edges_first{};
 
   // Throws calder::Error naming the scene and the field for anything out of
   // range (counts, masses, ranges, NaN, field parameters).

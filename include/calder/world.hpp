@@ -65,13 +65,21 @@ struct Boundary {
   bool use_radius = false;
   Edges edges{};
   BoundaryTiming timing = BoundaryTiming::after_update;
+  // Bounce: the walls stand this many pixels inside the canvas (exercise
+  // 2.1's ceiling: 1, the balloon's stroke weight).
+  double inset = 0.0;
+  // Wrap: true, periodic (above); false, the book's rule of exercise 2.1
+  // and chapter 1: a body past one side is put on the other side, x > w + r
+  // gives x = -r and x < -r gives x = w + r (two separate checks; y the same).
+  bool periodic = true;
 
   static Boundary none() { return {}; }
   static Boundary bounce(double restitution = 1.0, bool use_radius = false, Edges edges = {}) {
-    return {BoundaryKind::bounce, restitution, use_radius, edges, BoundaryTiming::after_update};
+    return {BoundaryKind::bounce,         restitution, use_radius, edges,
+            BoundaryTiming::after_update, 0.0,         true};
   }
   static Boundary wrap(bool use_radius = false) {
-    return {BoundaryKind::wrap, 1.0, use_radius, {}, BoundaryTiming::after_update};
+    return {BoundaryKind::wrap, 1.0, use_radius, {}, BoundaryTiming::after_update, 0.0, true};
   }
   void validate(const char* where) const;
 };
@@ -107,6 +115,9 @@ struct WorldDef {
   // Threads of the whole-world kernels: 0 = every core, n > 0 = n. Results
   // are bit-identical for any number.
   int threads = 0;
+  // The book's topSpeed: > 0 limits each body's speed after v += a dt, as
+  // p5's vel.limit(topSpeed) (semi_implicit_euler, book arithmetic); 0, none.
+  double max_speed = 0.0;
 };
 
 // Everything a whole-world batch of steps reads and writes (World::step hands
@@ -268,6 +279,8 @@ class World {
   void step_one();
   void check_step_settings() const;
   bool step_batch(int steps);
+  void advance_noise(int steps);
+  [[nodiscard]] std::string needs_plain_loops() const;  // "" or what the kernels lack
   void check_finite(const char* where) const;
 
   WorldDef def_;

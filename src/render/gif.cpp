@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: MIT
 // calder render: animated GIF output (giflib), with exact palettes when a
-// frame has at most 256 colours and libimagequant's otherwise.
+// frame has at most 256 colours and calder's quantiser's otherwise
+// (quantize.hpp).
 #include <gif_lib.h>
-#include <libimagequant.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -18,44 +18,13 @@
 #include "calder/error.hpp"
 #include "calder/output_file.hpp"
 #include "calder/render.hpp"
+#include "quantize.hpp"
 
 namespace calder {
 
 namespace {
 
 constexpr int kMaxGifSide = 65535;
-
-// Colours of a frame, 0x00RRGGBB, mapped to palette indices while they number
-// at most 256: open addressing in a table four times that size.
-class ExactPalette {
- public:
-  ExactPalette() { keys_.fill(kEmpty); }
-
-  // The colour's index, adding it; -1 once there would be more than 256.
-  int index_of(std::uint32_t color) {
-    std::uint32_t slot = (color * 0x9E3779B1u) >> (32 - kBits);
-    while (true) {
-      if (keys_[slot] == color) return values_[slot];
-      if (keys_[slot] == kEmpty) {
-        if (colors_.size() == 256) return -1;
-        keys_[slot] = color;
-        values_[slot] = static_cast<std::uint8_t>(colors_.size());
-        colors_.push_back(color);
-        return values_[slot];
-      }
-      slot = (slot + 1) & (kSize - 1);
-    }
-  }
-  [[nodiscard]] const std::vector<std::uint32_t>& colors() const { return colors_; }
-
- private:
-  static constexpr int kBits = 10;
-  static constexpr std::uint32_t kSize = 1u << kBits;
-  static constexpr std::uint32_t kEmpty = 0xFFFFFFFFu;  // not a 24-bit colour
-  std::array<std::uint32_t, kSize> keys_{};
-  std::array<std::uint8_t, kSize> values_{};
-  std::vector<std::uint32_t> colors_;
-};
 
 // The delay before frame `index + 1`, in hundredths of a second: rounded so
 // that the frames keep time on average, at least 2 (browsers play shorter
@@ -71,7 +40,6 @@ int delay_cs(int index, double fps) {
 struct GifWriter::Impl {
   OutputFile file;
   GifFileType* gif = nullptr;
-  liq_attr* quantizer = nullptr;
   int width = 0;
   int height = 0;
   double fps = 0.0;
@@ -79,8 +47,7 @@ struct GifWriter::Impl {
   bool finished = false;
   bool failed = false;
   std::vector<std::uint32_t> previous, current;  // 0x00RRGGBB
-  std::vector<GifPixelType> indices;
-  std::vector<unsigned char> rgba;  // for the quantizer
+  std::vector<std::uint8_t> indices;
 
   explicit Impl(const std::string& path) : file("GifWriter", path) {}
   ~Impl() {
@@ -88,7 +55,6 @@ struct GifWriter::Impl {
       int error = 0;
       EGifCloseFile(gif, &error);  // closes its own descriptor
     }
-    if (quantizer != nullptr) liq_attr_destroy(quantizer);
     // file's destructor removes the temporary file unless committed.
   }
   Impl(const Impl&) = delete;
@@ -104,8 +70,6 @@ struct GifWriter::Impl {
     if (result == GIF_ERROR) gif_failed(what);
   }
   void write_frame(int x0, int y0, int w, int h);
-  bool map_exact(int x0, int y0, int w, int h, std::vector<std::uint32_t>& colors);
-  void quantize(int x0, int y0, int w, int h, std::vector<GifColorType>& colors);
 };
 
 GifWriter::GifWriter(const std::string& path, int width, int height, double fps) {
@@ -216,87 +180,17 @@ void GifWriter::add_frame(const Canvas& canvas) {
   ++d.frames;
 }
 
-// More than 256 colours: libimagequant chooses the palette and remaps.
-void GifWriter::Impl::quantize(int x0, int y0, int w, int h, std::vector<GifColorType>& colors) {
-  const std::size_t count = static_cast<std::size_t>(w) * static_cast<std::size_t>(h);
-  if (quantizer == nullptr) {
-    quantizer = liq_attr_create();
-    if (quantizer == nullptr) throw Error("GifWriter: libimagequant: out of memory");
-    liq_set_max_colors(quantizer, 256);
-    // Speed 8 of 10: about four times faster than the default 4, for a mean
-    // error per channel of about 1 instead of 0.8 (tests/test_render.cpp).
-    liq_set_speed(quantizer, 8);
-  }
-  rgba.resize(count * 4);
-  for (int y = 0; y < h; ++y) {
-    const std::uint32_t* row = current.data() + static_cast<std::ptrdiff_t>(y0 + y) * width + x0;
-    unsigned char* out = rgba.data() + static_cast<std::ptrdiff_t>(y) * w * 4;
-    for (int x = 0; x < w; ++x) {
-      out[4 * x + 0] = static_cast<unsigned char>(row[x] >> 16);
-      out[4 * x + 1] = static_cast<unsigned char>((row[x] >> 8) & 0xff);
-      out[4 * x + 2] = static_cast<unsigned char>(row[x] & 0xff);
-      out[4 * x + 3] = 255;
-    }
-  }
-  liq_image* image = liq_image_create_rgba(quantizer, rgba.data(), w, h, 0.0);
-  if (image == nullptr) throw Error("GifWriter: libimagequant: cannot take the frame");
-  liq_result* result = nullptr;
-  const liq_error status = liq_image_quantize(image, quantizer, &result);
-  if (status != LIQ_OK || result == nullptr) {
-    liq_image_destroy(image);
-    throw Error("GifWriter: libimagequant: quantization failed (error " +
-                std::to_string(static_cast<int>(status)) + ")");
-  }
-  const liq_error remapped = liq_write_remapped_image(result, image, indices.data(), count);
-  const liq_palette* palette = liq_get_palette(result);
-  for (unsigned int i = 0; remapped == LIQ_OK && i < palette->count; ++i) {
-    const liq_color& c = palette->entries[i];
-    colors.push_back({c.r, c.g, c.b});
-  }
-  liq_result_destroy(result);
-  liq_image_destroy(image);
-  if (remapped != LIQ_OK) {
-    throw Error("GifWriter: libimagequant: remapping failed (error " +
-                std::to_string(static_cast<int>(remapped)) + ")");
-  }
-}
-
-// Maps the rectangle's pixels to the indices of their exact colours, if
-// there are at most 256 (false otherwise).
-bool GifWriter::Impl::map_exact(int x0, int y0, int w, int h, std::vector<std::uint32_t>& colors) {
-  ExactPalette exact;
-  std::uint32_t last_color = 0xFFFFFFFFu;
-  int last_index = 0;
-  for (int y = 0; y < h; ++y) {
-    const std::uint32_t* row = current.data() + static_cast<std::ptrdiff_t>(y0 + y) * width + x0;
-    GifPixelType* out = indices.data() + static_cast<std::ptrdiff_t>(y) * w;
-    for (int x = 0; x < w; ++x) {
-      if (row[x] != last_color) {
-        last_index = exact.index_of(row[x]);
-        if (last_index < 0) return false;
-        last_color = row[x];
-      }
-      out[x] = static_cast<GifPixelType>(last_index);
-    }
-  }
-  colors = exact.colors();
-  return true;
-}
-
 // Writes the rectangle (x0, y0, w, h) of `current` as one GIF image, with
-// its exact colours if it has at most 256, else libimagequant's 256.
+// its exact colours if it has at most 256, else the quantiser's 256.
 void GifWriter::Impl::write_frame(int x0, int y0, int w, int h) {
+  static_assert(sizeof(GifPixelType) == sizeof(std::uint8_t));
   indices.resize(static_cast<std::size_t>(w) * static_cast<std::size_t>(h));
+  const std::uint32_t* origin =
+      current.data() + static_cast<std::ptrdiff_t>(y0) * width + static_cast<std::ptrdiff_t>(x0);
   std::vector<GifColorType> colors;
-  std::vector<std::uint32_t> exact;
-  if (map_exact(x0, y0, w, h, exact)) {
-    for (std::uint32_t c : exact) {
-      colors.push_back({static_cast<GifByteType>(c >> 16),
-                        static_cast<GifByteType>((c >> 8) & 0xff),
-                        static_cast<GifByteType>(c & 0xff)});
-    }
-  } else {
-    quantize(x0, y0, w, h, colors);
+  for (std::uint32_t c : detail::quantize(origin, w, h, width, 256, indices.data())) {
+    colors.push_back({static_cast<GifByteType>(c >> 16), static_cast<GifByteType>((c >> 8) & 0xff),
+                      static_cast<GifByteType>(c & 0xff)});
   }
   // GIF palettes hold 2^k entries: pad with the last colour, so that the
   // palette holds the frame's colours and no other.

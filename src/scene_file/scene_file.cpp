@@ -352,7 +352,7 @@ class Reader {
  private:
   void canvas(const Tbl& top, Scene& s) const;
   void world(const Tbl& top, Scene& s) const;
-  void boundary(const Tbl& top, Scene& s) const;
+  void boundary(const Tbl& top, const char* table, Boundary& boundary) const;
   BodyGroup body_group(const toml::table& t, std::size_t total_before) const;
   SceneField field(const toml::table& t) const;
   AttractionLaw law(const toml::node& n, const char* owner) const;
@@ -426,7 +426,7 @@ const toml::array* Tbl::array(std::string_view key) const {
 Scene Reader::scene(const toml::table& root) {
   const Tbl top(*this, root, "the top level");
   top.allow({"name", "description", "frames", "seed", "origin", "on_press", "canvas", "world",
-             "boundary", "bodies", "fields", "input", "look"});
+             "boundary", "edges_first", "bodies", "fields", "input", "look"});
   Scene s;
   s.name = top.string("name", std::filesystem::path(source_).stem().string());
   s.description = top.string("description", "");
@@ -439,7 +439,8 @@ Scene Reader::scene(const toml::table& root) {
   s.on_press = top.choice("on_press", kPressActions, s.on_press);
   canvas(top, s);
   world(top, s);
-  boundary(top, s);
+  boundary(top, "boundary", s.world.boundary);
+  boundary(top, "edges_first", s.edges_first);
 
   if (const toml::node* n = top.find("bodies")) {
     const toml::array& groups = array_of(*n, "bodies", "an array of tables ([[bodies]])");
@@ -498,8 +499,9 @@ void Reader::world(const Tbl& top, Scene& s) const {
   const toml::table* t = top.table("world");
   if (t == nullptr) return;
   const Tbl w(*this, *t, "[world]", "world.");
-  w.allow({"dt", "integrator", "update_order", "arithmetic", "threads"});
+  w.allow({"dt", "integrator", "update_order", "arithmetic", "threads", "max_speed"});
   s.world.dt = w.number("dt", s.world.dt, Check::positive);
+  s.world.max_speed = w.number("max_speed", s.world.max_speed, Check::non_negative);
   s.world.integrator = w.choice("integrator", kIntegrators, s.world.integrator);
   s.world.update_order = w.choice("update_order", kUpdateOrders, s.world.update_order);
   s.world.arithmetic = w.choice("arithmetic", kArithmetics, s.world.arithmetic);
@@ -520,20 +522,27 @@ void Reader::world(const Tbl& top, Scene& s) const {
   }
 }
 
-void Reader::boundary(const Tbl& top, Scene& s) const {
-  const toml::table* t = top.table("boundary");
+// [boundary], or [edges_first] (the same keys but timing).
+void Reader::boundary(const Tbl& top, const char* table, Boundary& boundary) const {
+  const toml::table* t = top.table(table);
   if (t == nullptr) return;
-  const Tbl b(*this, *t, "[boundary]", "boundary.");
-  b.allow({"kind", "restitution", "use_radius", "edges", "timing"});
-  Boundary& boundary = s.world.boundary;
-  boundary.kind = choice(b.require("kind"), "boundary.kind", kBoundaryKinds);
+  const std::string name(table);
+  const Tbl b(*this, *t, cat("[", name, "]"), cat(name, "."));
+  if (name == "boundary") {
+    b.allow({"kind", "restitution", "use_radius", "edges", "timing", "inset", "periodic"});
+  } else {
+    b.allow({"kind", "restitution", "use_radius", "edges", "inset", "periodic"});
+  }
+  boundary.kind = choice(b.require("kind"), cat(name, ".kind"), kBoundaryKinds);
   boundary.restitution = b.number("restitution", boundary.restitution, Check::non_negative);
   boundary.use_radius = b.boolean("use_radius", boundary.use_radius);
+  boundary.inset = b.number("inset", boundary.inset, Check::non_negative);
+  boundary.periodic = b.boolean("periodic", boundary.periodic);
   if (const toml::array* edges = b.array("edges")) {
     boundary.edges = {false, false, false, false};
     std::size_t i = 0;
     for (const toml::node& e : *edges) {
-      const std::string label = cat("boundary.edges[", std::to_string(i++), "]");
+      const std::string label = cat(name, ".edges[", std::to_string(i++), "]");
       bool* flag = nullptr;
       switch (choice(e, label, kEdges)) {
         case Edge::left:
@@ -713,11 +722,12 @@ SceneField Reader::field(const toml::table& t) const {
     w.force = f.vec2("force", w.force);
     out.field = w;
   } else if (type == "noise_wind") {
-    allow({"strength", "rate", "offset"});
+    allow({"strength", "rate", "offset", "accumulate"});
     NoiseWind w;
     w.strength = f.number("strength", w.strength);
     w.rate = f.number("rate", w.rate);
     w.offset = f.number("offset", w.offset);
+    w.accumulate = f.boolean("accumulate", w.accumulate);
     out.field = w;
   } else if (type == "helium") {
     allow({"lift"});

@@ -191,6 +191,28 @@ struct Overloaded : Ts... {
 template <class... Ts>
 Overloaded(Ts...) -> Overloaded<Ts...>;
 
+// [boundary] (with its timing) or [edges_first]; inset and periodic only
+// when they are not the defaults.
+void write_boundary(Writer& w, const char* header, const Boundary& b, bool timing) {
+  w.header(header);
+  w.line("kind", str(name_of(kBoundaryKinds, b.kind)));
+  w.line("restitution", num(b.restitution));
+  w.line("use_radius", boolean(b.use_radius));
+  std::string edges;
+  for (const auto& [edge, on] : {std::pair{Edge::left, b.edges.left},
+                                 {Edge::right, b.edges.right},
+                                 {Edge::top, b.edges.top},
+                                 {Edge::bottom, b.edges.bottom}}) {
+    if (!on) continue;
+    if (!edges.empty()) edges += ", ";
+    edges += str(name_of(kEdges, edge));
+  }
+  w.line("edges", "[" + edges + "]");
+  if (timing) w.line("timing", str(name_of(kBoundaryTimings, b.timing)));
+  if (b.inset != 0.0) w.line("inset", num(b.inset));
+  if (!b.periodic) w.line("periodic", boolean(false));
+}
+
 void write_field(Writer& w, const SceneField& sf) {
   w.header("[[fields]]");
   w.line("type", str(field_name(sf.field)));
@@ -204,6 +226,7 @@ void write_field(Writer& w, const SceneField& sf) {
                    w.line("strength", num(f.strength));
                    w.line("rate", num(f.rate));
                    w.line("offset", num(f.offset));
+                   if (f.accumulate) w.line("accumulate", boolean(true));
                  },
                  [&](const Helium& f) { w.line("lift", num(f.lift)); },
                  [&](const Fan& f) {
@@ -303,23 +326,12 @@ std::string to_toml(const Scene& scene) {
   w.line("update_order", str(name_of(kUpdateOrders, scene.world.update_order)));
   w.line("arithmetic", str(name_of(kArithmetics, scene.world.arithmetic)));
   w.line("threads", std::to_string(scene.world.threads));
+  if (scene.world.max_speed > 0.0) w.line("max_speed", num(scene.world.max_speed));
 
-  const Boundary& b = scene.world.boundary;
-  w.header("[boundary]");
-  w.line("kind", str(name_of(kBoundaryKinds, b.kind)));
-  w.line("restitution", num(b.restitution));
-  w.line("use_radius", boolean(b.use_radius));
-  std::string edges;
-  for (const auto& [edge, on] : {std::pair{Edge::left, b.edges.left},
-                                 {Edge::right, b.edges.right},
-                                 {Edge::top, b.edges.top},
-                                 {Edge::bottom, b.edges.bottom}}) {
-    if (!on) continue;
-    if (!edges.empty()) edges += ", ";
-    edges += str(name_of(kEdges, edge));
+  write_boundary(w, "[boundary]", scene.world.boundary, true);
+  if (scene.edges_first.kind != BoundaryKind::none) {
+    write_boundary(w, "[edges_first]", scene.edges_first, false);
   }
-  w.line("edges", "[" + edges + "]");
-  w.line("timing", str(name_of(kBoundaryTimings, b.timing)));
 
   for (const BodyGroup& g : scene.bodies) write_body_group(w, g);
   for (const SceneField& f : scene.fields) write_field(w, f);
