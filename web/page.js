@@ -224,6 +224,7 @@
       hud(view, true);
     };
     syncControls();
+    window.calderView = view;  // for automation: the page's CalderView
     document.body.dataset.ready = 'true';
   }
 

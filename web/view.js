@@ -76,12 +76,14 @@
 
     // --- input ---
     toScene(event) {
-      const r = this.canvas.getBoundingClientRect();
-      const sx = this.info.width / (r.width || 1);
-      const sy = this.info.height / (r.height || 1);
+      // The content box: the border is not the canvas.
+      const c = this.canvas;
+      const r = c.getBoundingClientRect();
+      const sx = this.info.width / (c.clientWidth || 1);
+      const sy = this.info.height / (c.clientHeight || 1);
       return {
-        x: (event.clientX - r.left) * sx - this.info.originX,
-        y: (event.clientY - r.top) * sy - this.info.originY,
+        x: (event.clientX - r.left - c.clientLeft) * sx - this.info.originX,
+        y: (event.clientY - r.top - c.clientTop) * sy - this.info.originY,
       };
     }
 
@@ -239,8 +241,9 @@
 
     // --- drawing ---
     draw() {
-      const info = this.info;
-      if (!info) return;
+      if (!this.info) return;
+      // Fields move (a dragged attractor, the fan at the mouse): describe them anew.
+      const info = (this.info = this.api.info());
       const look = info.look;
       const ctx = this.ctx;
       const dpr = this.dpr;

@@ -94,7 +94,7 @@ const badTexts = {
   'typo.toml': 'name = "typo"\n\n[[bodies]]\ncount = 3\nmas = 2\n',
   'syntax.toml': 'name = "broken"\n[canvas\nwidth = 640\n',
   'range.toml': 'name = "r"\n[[bodies]]\ncount = 2\nmass = -1\n',
-  'field.toml': 'name = "f"\n[[bodies]]\ncount = 1\nmass = 1\n[[fields]]\ntype = "gravty"\n',
+  'field.toml': 'name = "f"\n[[bodies]]\ncount = 1\nmass = 1\nx = 1\ny = 1\n[[fields]]\ntype = "gravty"\n',
 };
 for (const [file, text] of Object.entries(badTexts)) {
   writeFileSync(join(dir, file), text);

@@ -15,7 +15,12 @@ export const kNative = resolve(process.env.CALDER_NATIVE || resolve(kRoot, 'buil
 export async function loadCore() {
   const require = createRequire(import.meta.url);
   const create = require(resolve(kSite, 'calder-core.js'));
-  return create({wasmBinary: readFileSync(resolve(kSite, 'calder-core.wasm'))});
+  const core = await create({wasmBinary: readFileSync(resolve(kSite, 'calder-core.wasm'))});
+  // Emscripten's node glue rethrows every uncaught error from inside its own
+  // source (printing all of it): let node report them itself.
+  process.removeAllListeners('uncaughtException');
+  process.removeAllListeners('unhandledRejection');
+  return core;
 }
 
 // Scenes whose state hash differs from native `calder run`, and why: the
