@@ -14,9 +14,18 @@
     'example-2.9': [10, 100, 1000, 3000],
   };
 
+  // The n-body method "auto" picks: the book's exact sum while it holds 60
+  // frames per second, then all pairs vectorised, then Barnes-Hut
+  // (docs/PERFORMANCE.md, "In the browser").
+  const kNBodyScenes = ['example-2.9', 'exercise-2.16'];
+  function autoMethod(count) {
+    if (count === null || count <= 300) return null;
+    return count <= 1500 ? 'direct' : 'barnes_hut';
+  }
+
   let view = null;
   let fileName = 'scene.toml';
-  let current = {scene: null, seed: null, count: null};
+  let current = {scene: null, seed: null, count: null, method: null};
 
   function showMessage(text) {
     const box = $('message');
@@ -30,13 +39,15 @@
     const [scene, hashQuery] = hash.split('?');
     const params = new URLSearchParams(location.search);
     for (const [k, v] of new URLSearchParams(hashQuery || '')) params.set(k, v);
-    return {scene: scene || kDefaultScene, seed: params.get('seed'), count: params.get('n')};
+    return {scene: scene || kDefaultScene, seed: params.get('seed'), count: params.get('n'),
+            method: params.get('method')};
   }
 
   function toUrl(want) {
     const params = new URLSearchParams();
     if (want.seed !== null && want.seed !== '') params.set('seed', want.seed);
     if (want.count !== null && want.count !== '') params.set('n', want.count);
+    if (want.method && want.method !== 'auto') params.set('method', want.method);
     const query = params.toString();
     history.replaceState(null, '', `${location.pathname}${query ? '?' + query : ''}#${want.scene}`);
   }
@@ -53,6 +64,9 @@
       }
       options.count = Number(want.count);
     }
+    const method = want.method && want.method !== 'auto' ? want.method
+                   : autoMethod(options.count ?? null);
+    if (method) options.method = method;
     try {
       calder.load(want.scene, options);
     } catch (e) {
@@ -90,6 +104,8 @@
       if (!sizes.includes(Number(count))) size.add(new Option(Number(count).toLocaleString('en'), count));
       size.value = count;
     }
+    $('method-label').hidden = !kNBodyScenes.includes(current.scene);
+    $('method').value = current.method || 'auto';
     if (!view) return;
     $('pause').textContent = view.paused ? 'run' : 'pause';
     $('forces').checked = view.showForces;
@@ -141,7 +157,7 @@
 
   function wire() {
     $('scene').addEventListener('change', () => {
-      const want = {scene: $('scene').value, seed: current.seed, count: null};
+      const want = {scene: $('scene').value, seed: current.seed, count: null, method: null};
       if (start(want)) toUrl(want);
     });
     $('seed').addEventListener('change', () => {
@@ -150,6 +166,10 @@
     });
     $('size').addEventListener('change', () => {
       const want = {...current, count: $('size').value};
+      if (start(want)) toUrl(want);
+    });
+    $('method').addEventListener('change', () => {
+      const want = {...current, method: $('method').value};
       if (start(want)) toUrl(want);
     });
     window.addEventListener('hashchange', () => {
@@ -212,7 +232,7 @@
     if (!start(want)) {
       // Never a blank page: the message stays, and the default scene runs.
       const message = $('message').textContent;
-      start({scene: kDefaultScene, seed: null, count: null});
+      start({scene: kDefaultScene, seed: null, count: null, method: null});
       showMessage(message);
     }
     view = calder.mount($('view'), {

@@ -218,12 +218,14 @@
       this.lastNow = now;
       let steps = 0;
       if (!this.paused && !this.error) {
-        // Real time: 60 frames of physics a second, times the speed; at most
-        // a quarter second of catching up after a stall.
-        this.stepBudget += Math.min((now - last) / 1000, 0.25) * kStepsPerSecond * this.speed;
+        // 60 frames of physics a second, times the speed; a machine that
+        // can't keep up slows the scene down (as p5's draw() loop does)
+        // rather than piling up steps.
+        this.stepBudget += ((now - last) / 1000) * kStepsPerSecond * this.speed;
         if (this.times.length === 0) this.stepBudget = Math.max(this.stepBudget, 1);
-        steps = Math.floor(this.stepBudget);
-        this.stepBudget -= steps;
+        const most = Math.max(1, Math.ceil(this.speed));
+        steps = Math.min(Math.floor(this.stepBudget), most);
+        this.stepBudget = steps === most ? 0 : this.stepBudget - steps;
         this.stepFrames(steps);
       }
       this.draw();

@@ -25,11 +25,13 @@
 #include <vector>
 
 #include "calder/diagnostics.hpp"
+#include "calder/nbody.hpp"
 #include "calder/error.hpp"
 #include "calder/render.hpp"
 #include "calder/scene.hpp"
 #include "calder/scene_file.hpp"
 #include "calder/trajectory.hpp"
+#include "scene_file/names.hpp"
 
 namespace calder::web {
 
@@ -312,6 +314,8 @@ class WebSimulation {
       }
       scene.bodies.front().count = static_cast<std::size_t>(n);
     }
+    const val method = options["method"];
+    if (!method.isUndefined() && !method.isNull()) set_method(scene, method);
     const val pressed = options["mousePressed"];
     if (pressed.isArray()) scene.input.mouse_pressed = ranges_from(pressed);
     const val mouse = options["mouse"];
@@ -321,6 +325,25 @@ class WebSimulation {
     }
     scene.validate();
     return Simulation(std::move(scene));
+  }
+
+  // The n-body method of every mutual attraction (scene files' names). The
+  // fast ones sum all pairs from one state: a sequential world (example 2.9)
+  // becomes simultaneous.
+  static void set_method(Scene& scene, const val& method) {
+    const std::string name = method.isString() ? method.as<std::string>() : std::string("?");
+    std::optional<NBodyMethod> chosen;
+    std::string names;
+    for (const auto& choice : scene_file_detail::kNBodyMethods) {
+      if (choice.name == name) chosen = choice.value;
+      names += names.empty() ? "" : ", ";
+      names += choice.name;
+    }
+    if (!chosen) throw Error("method: expected one of " + names + ", got '" + name + "'");
+    for (SceneField& field : scene.fields) {
+      if (auto* mutual = std::get_if<MutualAttraction>(&field.field)) mutual->method = *chosen;
+    }
+    if (*chosen != NBodyMethod::exact) scene.world.update_order = UpdateOrder::simultaneous;
   }
 
   std::uint32_t seed_ = 0;
@@ -340,6 +363,7 @@ val scene_list() {
 }
 
 EMSCRIPTEN_BINDINGS(calder_web) {
+  calder::nbody::install();  // scenes may ask for method = "direct" or "barnes_hut"
   emscripten::function("scenes", &scene_list);
   emscripten::class_<WebSimulation>("Simulation")
       .constructor<const std::string&, const val&>()
