@@ -76,6 +76,7 @@
     }
     showMessage('');
     current = {...want};
+    document.body.dataset.method = method || 'exact';
     fileName = `${want.scene}.toml`;
     afterLoad();
     return true;

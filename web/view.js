@@ -37,6 +37,7 @@
       this.onError = options.onError || null;
       this.stats = {fps: 0, stepsPerSecond: 0, renderer: ''};
       this.stepBudget = 0;
+      this.draws = 0;  // frames drawn so far
       this.fresh = true;
       this.times = [];
       this.stepTimes = [];
@@ -244,6 +245,7 @@
     // --- drawing ---
     draw() {
       if (!this.info) return;
+      this.draws += 1;
       // Fields move (a dragged attractor, the fan at the mouse): describe them anew.
       const info = (this.info = this.api.info());
       const look = info.look;
