@@ -20,7 +20,7 @@
   const kNBodyScenes = ['example-2.9', 'exercise-2.16'];
   function autoMethod(count) {
     if (count === null || count <= 300) return null;
-    return count <= 1500 ? 'direct' : 'barnes_hut';
+    return count <= 600 ? 'direct' : 'barnes_hut';
   }
 
   let view = null;

@@ -9,8 +9,8 @@
 //  - the page's size, gzipped.
 // Prints a Markdown report (docs/PERFORMANCE.md, "In the browser").
 //
-//   node web/bench/run.mjs        (scripts/web --bench; the SIMD rows need
-//                                  build-web-simd: scripts/web --bench builds it)
+//   node web/bench/run.mjs [--write docs/PERFORMANCE.md]
+//     (scripts/web --bench; the SIMD rows need build-web-simd, which it builds)
 import {spawnSync} from 'node:child_process';
 import {existsSync, mkdtempSync, readFileSync, writeFileSync} from 'node:fs';
 import {cpus, loadavg, tmpdir} from 'node:os';
@@ -70,7 +70,7 @@ async function physicsRate(prefix, scene, options) {
     return steps / ((performance.now() - t0) / 1000);
   }, [scene, options, kMeasureMs]);
 }
-// Native `calder run` of the same scene text, pinned to one core: steps/s
+// Native `calder run` of the same scene text on one thread: steps/s
 // from the difference of two runs (frames and 1), which cancels the setup.
 const core = await loadCore();
 function nativeRate(scene, options, frames) {
@@ -82,7 +82,7 @@ function nativeRate(scene, options, frames) {
   writeFileSync(file, text);
   const time = (n) => {
     const t0 = process.hrtime.bigint();
-    const run = spawnSync('taskset', ['-c', '0', kNative, 'run', file, '--frames', String(n)],
+    const run = spawnSync(kNative, ['run', file, '--frames', String(n)],
                           {encoding: 'utf8', env: {...process.env, OMP_NUM_THREADS: '1'}});
     if (run.status !== 0) throw new Error(run.stderr);
     return Number(process.hrtime.bigint() - t0) / 1e9;
@@ -96,6 +96,7 @@ const out = (s = '') => {
   lines.push(s);
   console.log(s);
 };
+const results = {nbody: {}, rain: {}, simd: [], gzipKiB: 0};
 
 // --- example 2.9: p5.js against the page ---
 out('| example 2.9, N | p5.js fps | p5.js pairs/s | calder exact: fps | pairs/s | calder (method) fps | pairs/s | exact physics only, steps/s | native exact, steps/s |');
@@ -116,19 +117,21 @@ for (const n of [100, 1000, 3000]) {
   const method = await page.evaluate(() => document.body.dataset.method);
   const physics = await physicsRate('', 'example-2.9', {seed: 0, count: n, method: 'exact'});
   const native = nativeRate('example-2.9', {seed: 0, count: n, method: 'exact'}, Math.max(20, Math.round(2e8 / pairs)));
+  results.nbody[n] = {p5fps, exact, picked, method, physics, native};
   out(`| ${n} | ${fmt(p5fps)} | ${fmt(p5fps * pairs)} | ${fmt(exact.fps)} | ${fmt(exact.steps * pairs)} | ` +
       `${fmt(picked.fps)} (${method}) | ${fmt(picked.steps * pairs)} | ${fmt(physics)} | ${fmt(native)} (web/native ${fmt(native / physics, 2)}x time) |`);
 }
 out();
 
 // --- rain: the page against native ---
-out('| rain, bodies | page: drawn frames/s | page: steps/s | physics only in the page, steps/s | native, one core, steps/s | wasm time / native time |');
+out('| rain, bodies | page: drawn frames/s | page: steps/s | physics only in the page, steps/s | native, one thread, steps/s | wasm time / native time |');
 out('|---|---|---|---|---|---|');
 for (const n of [10000, 100000]) {
   await calderPage(`?seed=1&n=${n}#rain`);
   const rates = await pageRates();
   const physics = await physicsRate('', 'rain', {seed: 1, count: n});
   const native = nativeRate('rain', {seed: 1, count: n}, n >= 100000 ? 200 : 2000);
+  results.rain[n] = {rates, physics, native};
   out(`| ${n} | ${fmt(rates.fps)} | ${fmt(rates.steps)} | ${fmt(physics)} | ${fmt(native)} | ${fmt(native / physics, 2)} |`);
 }
 out();
@@ -147,6 +150,7 @@ if (mounts['/simd/']) {
     const plain = await physicsRate('', scene, options);
     const simd = await physicsRate('/simd', scene, options);
     out(`| ${label} | ${fmt(plain)} | ${fmt(simd)} | ${fmt(simd / plain, 2)} |`);
+    results.simd.push({label, ratio: simd / plain});
   }
   out();
 }
@@ -160,6 +164,7 @@ for (const f of files) {
   raw += bytes.length;
   gz += gzipSync(bytes, {level: 9}).length;
 }
+results.gzipKiB = gz / 1024;
 out(`The page's files (${files.join(', ')}): ${(raw / 1024).toFixed(0)} KiB, ` +
     `${(gz / 1024).toFixed(0)} KiB gzipped.`);
 out();
@@ -167,6 +172,49 @@ out(`Chromium ${browser.version()} headless (software rendering), ${cpus().lengt
     `(${cpus()[0].model}); load average ${load0.toFixed(1)} at the start, ` +
     `${loadavg()[0].toFixed(1)} at the end.`);
 if (errors.length) out(`page errors: ${errors.join('; ')}`);
+out();
+
+// --- the issue's targets, from the figures above ---
+const verdict = (ok) => (ok ? 'met' : 'not met');
+const r5 = results.rain[100000];
+const n1000 = results.nbody[1000];
+out(`- rain with 10^5 bodies drawn at 30 frames/s or more: ${fmt(r5.rates.fps)} frames/s, ${verdict(r5.rates.fps >= 30)}.`);
+out(`- example 2.9 with 1,000 bodies at 60 frames/s (the page's method, ${n1000.method}): ` +
+    `${fmt(n1000.picked.fps)} frames/s, ${verdict(n1000.picked.fps >= 57)}; p5.js: ${fmt(n1000.p5fps)}.`);
+for (const [label, r] of [['rain, 10^4', results.rain[10000]], ['rain, 10^5', r5],
+                          ['example 2.9 exact, 1,000', n1000]]) {
+  out(`- WebAssembly physics within 1.5x of native single-threaded time, ${label}: ` +
+      `${fmt(r.native / r.physics, 2)}x, ${verdict(r.native / r.physics <= 1.5)}.`);
+}
+out(`- the page's files at most 500 KB gzipped: ${fmt(results.gzipKiB * 1.024, 0)} KB, ${verdict(results.gzipKiB * 1.024 <= 500)}.`);
+const simdWins = results.simd.filter((s) => s.ratio > 1.05).map((s) => s.label);
+if (results.simd.length) {
+  out(`- SIMD: faster by more than 5% for ${simdWins.length ? simdWins.join('; ') : 'none of the cases'}.`);
+}
+
+// --write FILE: this report as the section "In the browser" of FILE (the last one).
+const writeAt = process.argv.indexOf('--write');
+if (writeAt > 0) {
+  const file = resolve(process.argv[writeAt + 1]);
+  const before = existsSync(file) ? readFileSync(file, 'utf8') : '';
+  const at = before.indexOf('\n## In the browser\n');
+  const head = (at >= 0 ? before.slice(0, at) : before).replace(/\n*$/, '\n');
+  const section = [
+    '## In the browser',
+    '',
+    'calder\'s page (docs/WEB.md) in headless Chromium, side by side in one run with the',
+    'book\'s example 2.9 written as a p5.js sketch (`web/bench/p5-nbody.js`, p5.js from npm)',
+    'and with native `calder run` of the same scene text on one thread of the same machine.',
+    'Frames/s are the page\'s drawn frames (the browser caps them at 60); pairs/s are',
+    'N(N-1) per physics step; "physics only" steps the module in a loop inside the page,',
+    'nothing drawn. Written by `scripts/web --bench` (`node web/bench/run.mjs --write',
+    'docs/PERFORMANCE.md`), which replaces this section; `scripts/performance` keeps it.',
+    '',
+    ...lines,
+  ].join('\n');
+  writeFileSync(file, `${head}\n${section}\n`);
+  console.log(`wrote ${file}`);
+}
 
 await browser.close();
 server.close();
