@@ -4,16 +4,17 @@
 // with the mouse and the window's keys, as `calder window` does.
 //
 // Drawing: up to kPathBodies bodies, Canvas 2D paths (the book's circles,
-// one path for all bodies above kSingleBodies); more, per-pixel ImageData
-// (discs stamped into a 32-bit buffer), which holds the frame rate at 10^5
-// bodies where arcs don't (docs/PERFORMANCE.md).
+// each its own fill and stroke up to kSingleBodies, one path above); more,
+// discs stamped per pixel into an ImageData with 32-bit writes, which holds
+// the frame rate where software-rasterised arcs don't (docs/PERFORMANCE.md).
 (function (global) {
   'use strict';
 
   const kSingleBodies = 300;   // each body its own fill and stroke, as p5 draws them
-  const kPathBodies = 5000;    // above: per-pixel drawing
+  const kPathBodies = 500;     // above: per-pixel drawing
   const kVectorBodies = 2000;  // force and velocity arrows up to this many bodies
-  const kPixelRadius = 3;      // per-pixel drawing: discs of at most this radius
+  const kPixelRadius = 3;      // per-pixel drawing of more than kSmallDiscs bodies: discs of at most this radius
+  const kSmallDiscs = 30000;
   const kStepsPerSecond = 60;  // the sketches' frame rate
 
   const css = (c, alpha = 1) =>
@@ -410,10 +411,11 @@
       const ox = this.info.originX;
       const oy = this.info.originY;
       const {x, y, radius, count} = b;
+      const cap = count > kSmallDiscs ? kPixelRadius : Infinity;
       for (let i = 0; i < count; ++i) {
         const cx = Math.round((x[i] + ox) * dpr);
         const cy = Math.round((y[i] + oy) * dpr);
-        const d = this.disc(Math.min(radius[i], kPixelRadius) * dpr);
+        const d = this.disc(Math.min(radius[i], cap) * dpr);
         if (cx < -d.reach || cy < -d.reach || cx >= w + d.reach || cy >= h + d.reach) continue;
         const inside = cx >= d.reach && cy >= d.reach && cx < w - d.reach && cy < h - d.reach;
         const centre = cy * w + cx;
