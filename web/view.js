@@ -106,9 +106,10 @@
         },
         key: (e) => this.key(e),
       };
-      c.addEventListener('mousedown', this.handlers.down);
-      global.addEventListener('mousemove', this.handlers.move);
-      global.addEventListener('mouseup', this.handlers.up);
+      // Pointer events: the mouse, a pen or a finger alike.
+      c.addEventListener('pointerdown', this.handlers.down);
+      global.addEventListener('pointermove', this.handlers.move);
+      global.addEventListener('pointerup', this.handlers.up);
       if (keys) global.addEventListener('keydown', this.handlers.key);
     }
 
@@ -192,9 +193,9 @@
     destroy() {
       this.stop();
       this.unsubscribe();
-      this.canvas.removeEventListener('mousedown', this.handlers.down);
-      global.removeEventListener('mousemove', this.handlers.move);
-      global.removeEventListener('mouseup', this.handlers.up);
+      this.canvas.removeEventListener('pointerdown', this.handlers.down);
+      global.removeEventListener('pointermove', this.handlers.move);
+      global.removeEventListener('pointerup', this.handlers.up);
       global.removeEventListener('keydown', this.handlers.key);
     }
 

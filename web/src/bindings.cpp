@@ -25,8 +25,8 @@
 #include <vector>
 
 #include "calder/diagnostics.hpp"
-#include "calder/nbody.hpp"
 #include "calder/error.hpp"
+#include "calder/nbody.hpp"
 #include "calder/render.hpp"
 #include "calder/scene.hpp"
 #include "calder/scene_file.hpp"
@@ -152,9 +152,7 @@ class WebSimulation {
   }
 
   [[nodiscard]] double frame() const { return static_cast<double>(simulation_.frame()); }
-  [[nodiscard]] double frames() const {
-    return static_cast<double>(simulation_.scene().frames);
-  }
+  [[nodiscard]] double frames() const { return static_cast<double>(simulation_.scene().frames); }
   [[nodiscard]] std::size_t body_count() const { return simulation_.world().body_count(); }
   [[nodiscard]] std::string state_hash_text() const {
     return hex16(state_hash(simulation_.world()));
