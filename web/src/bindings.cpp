@@ -220,6 +220,7 @@ class WebSimulation {
     val out = val::object();
     out.set("name", scene.name);
     out.set("description", scene.description);
+    out.set("frames", static_cast<double>(scene.frames));  // the default run's length
     out.set("width", world.width());
     out.set("height", world.height());
     out.set("originX", scene.origin.x);

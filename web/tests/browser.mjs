@@ -13,7 +13,7 @@ import {join} from 'node:path';
 
 import {serve} from '../tools/serve.mjs';
 import {launch} from './chromium.mjs';
-import {check, done, kNative, kSite, loadCore} from './module.mjs';
+import {check, done, kDiffersFromNative, kNative, kSite, loadCore} from './module.mjs';
 
 const screenshotAt = process.argv.indexOf('--screenshot');
 const screenshotFile = screenshotAt > 0 ? process.argv[screenshotAt + 1] : null;
@@ -165,6 +165,28 @@ try {
   check((await page.textContent('#message')).includes('seed: expected an integer from 0 to 4294967295'),
         'a seed out of range: a message');
   await page.evaluate(() => (location.hash = '#example-2.5'));
+
+  // --- in the browser too, the native numbers: every scene, seed 1 ---
+  {
+    const names = await page.evaluate(() => calder.scenes().map((s) => s.name));
+    const webHashes = await page.evaluate((list) => {
+      calderView.paused = true;
+      return list.map((name) => {
+        calder.load(name, {seed: 1});
+        calder.step(calder.info().frames);
+        return calder.stateHash();
+      });
+    }, names);
+    const differ = [];
+    names.forEach((name, k) => {
+      const run = spawnSync(kNative, ['run', name, '--seed', '1'], {encoding: 'utf8'});
+      const native = /^state hash\s+([0-9a-f]{16})$/m.exec(run.stdout)[1];
+      const known = (kDiffersFromNative[name] || []).includes(1);
+      if ((webHashes[k] === native) === known) differ.push(`${name} (${webHashes[k]} vs ${native})`);
+    });
+    check(differ.length === 0, `in Chromium, every scene --seed 1 has native's hash (documented ` +
+          `exceptions apart)${differ.length ? ': ' + differ.join(', ') : ''}`);
+  }
 
   // --- every scene, forces and velocities shown, without a console error ---
   await open('?seed=1#example-2.1');
