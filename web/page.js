@@ -205,6 +205,7 @@
       const file = $('file').files[0];
       if (!file) return;
       fileName = file.name;
+      $('file-name').textContent = fileName;
       $('editor').value = await file.text();
       $('file').value = '';
       applyEditor();

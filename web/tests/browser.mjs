@@ -7,13 +7,13 @@
 //
 //   node tests/browser.mjs [--screenshot FILE]   (FILE: a PNG of the page, for the README)
 import {spawnSync} from 'node:child_process';
-import {mkdtempSync, writeFileSync} from 'node:fs';
+import {mkdtempSync, readFileSync, writeFileSync} from 'node:fs';
 import {tmpdir} from 'node:os';
 import {join} from 'node:path';
 
 import {serve} from '../tools/serve.mjs';
 import {launch} from './chromium.mjs';
-import {check, done, kDiffersFromNative, kNative, kSite, loadCore} from './module.mjs';
+import {check, done, kDiffersFromNative, kNative, kRoot, kSite, loadCore} from './module.mjs';
 
 const screenshotAt = process.argv.indexOf('--screenshot');
 const screenshotFile = screenshotAt > 0 ? process.argv[screenshotAt + 1] : null;
@@ -22,7 +22,8 @@ const core = await loadCore();
 const server = await serve(kSite);
 const base = `http://127.0.0.1:${server.address().port}/`;
 const browser = await launch();
-const page = await browser.newPage({viewport: {width: 1000, height: 900}, deviceScaleFactor: 1});
+const page = await browser.newPage({viewport: {width: 1000, height: 900}, deviceScaleFactor: 1,
+                                    acceptDownloads: true});
 const problems = [];
 page.on('console', (m) => {
   if (m.type() === 'error' || m.type() === 'warning') problems.push(`${m.type()}: ${m.text()}`);
@@ -154,6 +155,36 @@ try {
   await page.fill('#editor', editorText.replace('colour = "red"\n', '').replace(/^frames = \d+$/m, 'frames = 50'));
   await page.click('#apply');
   check(!(await page.isVisible('#editor-error')), 'a good edit applies and clears the message');
+
+  // --- a scene file from disk, and the edited one saved ---
+  const fromDisk = readFileSync(join(kRoot, 'scenes/exercise-2.9.toml'));
+  await page.setInputFiles('#file', {name: 'boxes.toml', mimeType: 'text/plain', buffer: fromDisk});
+  await page.waitForFunction(() => calder.info().name === 'exercise-2.9');
+  check((await page.textContent('#file-name')).trim() === 'boxes.toml' &&
+        (await page.inputValue('#editor')) === fromDisk.toString(),
+        `a .toml loaded from disk runs (${(await page.textContent('#file-name')).trim()}, ${(await page.inputValue('#editor')).length} vs ${fromDisk.length})`);
+  await page.fill('#editor', fromDisk.toString().replace(/^frames = .*$/m, 'frames = 77'));
+  const [download] = await Promise.all([page.waitForEvent('download'), page.click('#save')]);
+  const saved = readFileSync(await download.path(), 'utf8');
+  check(download.suggestedFilename() === 'boxes.toml' && /^frames = 77$/m.test(saved),
+        'save downloads the edited text under its name');
+
+  // --- the window's keys ---
+  await page.locator('#view').focus();
+  const keysBefore = await page.evaluate(() => ({speed: calderView.speed, paused: calderView.paused}));
+  await page.keyboard.press('+');
+  await page.keyboard.press('+');
+  await page.keyboard.press('-');
+  await page.keyboard.press('t');
+  const keysAfter = await page.evaluate(() => ({speed: calderView.speed, trails: calderView.trails}));
+  check(keysAfter.speed === keysBefore.speed * 2 && keysAfter.trails === true, '+ + - doubles the speed, t turns trails on');
+  await page.keyboard.press(' ');
+  const paused = await page.evaluate(() => calderView.paused);
+  await page.keyboard.press(' ');
+  await page.waitForFunction(() => calder.frame() > 20);
+  await page.keyboard.press('r');
+  const afterR = await page.evaluate(() => calder.frame());
+  check(paused !== keysBefore.paused && afterR < 10, `space pauses, r restarts (frame ${afterR})`);
 
   // --- bad URLs: a message, and a scene still runs ---
   await open('#example-9.9');
