@@ -26,6 +26,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <limits>
 #include <vector>
 
 #if defined(__x86_64__) || defined(__i386__)
@@ -35,6 +36,10 @@
 #include "../integrate.hpp"
 #include "calder/movers.hpp"
 #include "plan.hpp"
+
+// The kernels' lambdas (an op's force, a pass over a chunk) must be inlined
+// into their vector loops: called, a Block goes through memory.
+#define CALDER_MOVERS_INLINE __attribute__((always_inline))
 
 namespace calder::movers::detail {
 // Internal linkage: each kernel file has its own copies, built with its own
@@ -94,9 +99,10 @@ struct Block {
   [[gnu::always_inline]] V mu() const { return load(chunk->mu + at); }
 };
 
-// Vector v of a chunk.
+// Vector v of a chunk; its accelerations from the chunk (the tile's) or +0.
 template <class R>
-[[gnu::always_inline]] inline Block<R> load_block(Chunk<R>& chunk, std::size_t v) {
+[[gnu::always_inline]] inline Block<R> load_block(Chunk<R>& chunk, std::size_t v,
+                                                  bool accelerations) {
   Block<R> b;
   b.chunk = &chunk;
   b.at = v * static_cast<std::size_t>(Block<R>::kLanes);
@@ -104,21 +110,9 @@ template <class R>
   b.y = Block<R>::load(chunk.y + b.at);
   b.vx = Block<R>::load(chunk.vx + b.at);
   b.vy = Block<R>::load(chunk.vy + b.at);
-  b.ax = Block<R>::load(chunk.ax + b.at);
-  b.ay = Block<R>::load(chunk.ay + b.at);
+  b.ax = accelerations ? Block<R>::load(chunk.ax + b.at) : typename Simd<R>::V{};
+  b.ay = accelerations ? Block<R>::load(chunk.ay + b.at) : typename Simd<R>::V{};
   return b;
-}
-
-// Stores a vector's state back into its chunk.
-template <class R>
-[[gnu::always_inline]] inline void store_block(Chunk<R>& chunk, const Block<R>& b) {
-  using V = typename Simd<R>::V;
-  __builtin_memcpy(chunk.x + b.at, &b.x, sizeof(V));
-  __builtin_memcpy(chunk.y + b.at, &b.y, sizeof(V));
-  __builtin_memcpy(chunk.vx + b.at, &b.vx, sizeof(V));
-  __builtin_memcpy(chunk.vy + b.at, &b.vy, sizeof(V));
-  __builtin_memcpy(chunk.ax + b.at, &b.ax, sizeof(V));
-  __builtin_memcpy(chunk.ay + b.at, &b.ay, sizeof(V));
 }
 
 // Correctly rounded square roots, one instruction per vector. (A lane loop
@@ -260,14 +254,18 @@ template <class R, bool kBook>
   }
 }
 
-// Quadratic drag -c |v| v area, where strictly inside the op's region.
-template <class R, bool kBook, bool kNeverReverse>
+// Quadratic drag -c |v| v area, where strictly inside the op's region
+// (everywhere: on every body, as the plain loops' Drag).
+template <class R, bool kBook, bool kNeverReverse, bool kEverywhere>
 [[gnu::always_inline]] inline void op_drag(Block<R>& b, const Params<R>& p, R dt) {
   using V = typename Simd<R>::V;
   {
     const V vx = b.vx;
     const V vy = b.vy;
-    const auto inside = (b.x > p.x_min) & (b.x < p.x_max) & (b.y > p.y_min) & (b.y < p.y_max);
+    using M = typename Simd<R>::M;
+    const M inside = kEverywhere
+                         ? ~M{}
+                         : M((b.x > p.x_min) & (b.x < p.x_max) & (b.y > p.y_min) & (b.y < p.y_max));
     const V speed = vlength<R, kBook>(vx * vx + vy * vy);
     if constexpr (kBook) {
       // calder::drag: magnitude c * speed * speed * area; -v set to it
@@ -440,44 +438,53 @@ template <class R, bool kBook>
   }
 }
 
+// The bounce's parameters, converted once. An edge that doesn't bounce gets
+// an infinite wall that no coordinate crosses, so that the bounce needs
+// neither branches nor masks beyond the comparisons; one that bounces, the
+// book's bounds exactly.
+template <class R>
+struct Walls {
+  R right, bottom;  // the canvas's width and height, or +infinity
+  R left, top;      // 0, or -infinity (added to the radius: the bound)
+  R reverse;
+  bool before;
+  explicit Walls(const Boundary& boundary, R width, R height)
+      : right(boundary.edges.right ? width : std::numeric_limits<R>::infinity()),
+        bottom(boundary.edges.bottom ? height : std::numeric_limits<R>::infinity()),
+        left(boundary.edges.left ? R(0) : -std::numeric_limits<R>::infinity()),
+        top(boundary.edges.top ? R(0) : -std::numeric_limits<R>::infinity()),
+        reverse(R(-boundary.restitution)),
+        before(boundary.timing == BoundaryTiming::before_update) {}
+};
+
 // World::boundary_one's bounce: right before left, bottom before top; clamp,
 // then reverse.
 template <class R, bool kUseRadius>
-[[gnu::always_inline]] inline void bounce(Block<R>& b, const Boundary& boundary, R width, R height,
-                                          R reverse) {
+[[gnu::always_inline]] inline void bounce(Block<R>& b, const Walls<R>& walls) {
   using V = typename Simd<R>::V;
-  using M = typename Simd<R>::M;
   const V r = kUseRadius ? b.r() : splat<V>(R(0));
   const V x = b.x;
   const V y = b.y;
-  const V x_hi = width - r;
-  const V y_hi = height - r;
-  const M none{};
-  const M right = boundary.edges.right ? M(x > x_hi) : none;
-  const M left = boundary.edges.left ? M((x < r) & ~right) : none;
-  const M bottom = boundary.edges.bottom ? M(y > y_hi) : none;
-  const M top = boundary.edges.top ? M((y < r) & ~bottom) : none;
-  V nx = right ? x_hi : x;
+  const auto right = x > walls.right - r;
+  const auto left = (x < r + walls.left) & ~right;  // r + 0 is r, r - inf is -inf
+  const auto bottom = y > walls.bottom - r;
+  const auto top = (y < r + walls.top) & ~bottom;
+  V nx = right ? walls.right - r : x;
   nx = left ? r : nx;
-  V ny = bottom ? y_hi : y;
+  V ny = bottom ? walls.bottom - r : y;
   ny = top ? r : ny;
   b.x = nx;
   b.y = ny;
-  b.vx = (right | left) ? b.vx * reverse : b.vx;
-  b.vy = (bottom | top) ? b.vy * reverse : b.vy;
+  b.vx = (right | left) ? b.vx * walls.reverse : b.vx;
+  b.vy = (bottom | top) ? b.vy * walls.reverse : b.vy;
 }
 
 // The update (semi-implicit Euler, acceleration cleared) and the bounce.
 template <class R, bool kUseRadius>
-[[gnu::always_inline]] inline void update_bounce(Block<R>& b, const Boundary& boundary, R width,
-                                                 R height, R dt) {
-  const R reverse = R(-boundary.restitution);
-  const bool before = boundary.timing == BoundaryTiming::before_update;
-  {
-    if (before) bounce<R, kUseRadius>(b, boundary, width, height, reverse);
-    calder::detail::kick_drift(b.x, b.y, b.vx, b.vy, b.ax, b.ay, splat<typename Simd<R>::V>(dt));
-    if (!before) bounce<R, kUseRadius>(b, boundary, width, height, reverse);
-  }
+[[gnu::always_inline]] inline void update_bounce(Block<R>& b, const Walls<R>& walls, R dt) {
+  if (walls.before) bounce<R, kUseRadius>(b, walls);
+  calder::detail::kick_drift(b.x, b.y, b.vx, b.vy, b.ax, b.ay, splat<typename Simd<R>::V>(dt));
+  if (!walls.before) bounce<R, kUseRadius>(b, walls);
 }
 
 // The periodic wrap, lane by lane (rare and branchy: not worth vectorising).
@@ -501,8 +508,9 @@ template <class R>
                                           R dt) {
   using V = typename Simd<R>::V;
   if (boundary.kind == BoundaryKind::bounce) {
-    if (boundary.use_radius) return update_bounce<R, true>(b, boundary, width, height, dt);
-    return update_bounce<R, false>(b, boundary, width, height, dt);
+    const Walls<R> walls(boundary, width, height);
+    if (boundary.use_radius) return update_bounce<R, true>(b, walls, dt);
+    return update_bounce<R, false>(b, walls, dt);
   }
   const bool wrapping = boundary.kind == BoundaryKind::wrap;
   const bool before = boundary.timing == BoundaryTiming::before_update;
@@ -511,101 +519,165 @@ template <class R>
   if (wrapping && !before) wrap(b, boundary, width, height);
 }
 
-// Runs one force over every vector of a chunk: each vector's state loaded,
-// its accelerations stored. The op is chosen once per pass, not per vector,
-// so that each pass is a tight vector loop.
-template <class R, class Force>
-[[gnu::always_inline]] inline void for_each_vector(Chunk<R>& chunk, std::size_t vectors,
-                                                   Force force) {
-  using V = typename Simd<R>::V;
-  for (std::size_t v = 0; v < vectors; ++v) {
-    Block<R> b = load_block(chunk, v);
-    force(b);
-    __builtin_memcpy(chunk.ax + b.at, &b.ax, sizeof(V));
-    __builtin_memcpy(chunk.ay + b.at, &b.ay, sizeof(V));
-  }
-}
-
-template <class R, bool kBook>
-void apply_op(Chunk<R>& chunk, std::size_t vectors, const Op& op, const Params<R>& p, int step,
-              R width, R height, R dt) {
-  const auto each = [&](auto force) { for_each_vector(chunk, vectors, force); };
+// Hands `each` the force of one op: a function of a Block that adds it to
+// the block's accelerations.
+template <class R, bool kBook, class Each>
+[[gnu::always_inline]] inline void apply_op(Each&& each, const Op& op, const Params<R>& p, int step,
+                                            R width, R height, R dt) {
   switch (op.kind) {
     case OpKind::uniform:
       if (op.per_step != nullptr) {
         const auto si = static_cast<std::size_t>(step);
         const R fx = R(op.per_step[2 * si]);
         const R fy = R(op.per_step[2 * si + 1]);
-        return each([=](Block<R>& b) { op_uniform<R, kBook>(b, fx, fy); });
+        return each([=](Block<R>& b) CALDER_MOVERS_INLINE { op_uniform<R, kBook>(b, fx, fy); });
       }
-      return each([=](Block<R>& b) { op_uniform<R, kBook>(b, p.fx, p.fy); });
+      return each([=](Block<R>& b) CALDER_MOVERS_INLINE { op_uniform<R, kBook>(b, p.fx, p.fy); });
     case OpKind::gravity_scaled:
-      return each([=](Block<R>& b) { op_gravity_scaled<R, kBook>(b, p.fx, p.fy); });
+      return each([=](Block<R>& b)
+                      CALDER_MOVERS_INLINE { op_gravity_scaled<R, kBook>(b, p.fx, p.fy); });
     case OpKind::drag:
-      if (p.never_reverse) return each([=](Block<R>& b) { op_drag<R, kBook, true>(b, p, dt); });
-      return each([=](Block<R>& b) { op_drag<R, kBook, false>(b, p, dt); });
+      if (p.never_reverse) {
+        if (op.everywhere)
+          return each([=](Block<R>& b)
+                          CALDER_MOVERS_INLINE { op_drag<R, kBook, true, true>(b, p, dt); });
+        return each([=](Block<R>& b)
+                        CALDER_MOVERS_INLINE { op_drag<R, kBook, true, false>(b, p, dt); });
+      }
+      if (op.everywhere)
+        return each([=](Block<R>& b)
+                        CALDER_MOVERS_INLINE { op_drag<R, kBook, false, true>(b, p, dt); });
+      return each([=](Block<R>& b)
+                      CALDER_MOVERS_INLINE { op_drag<R, kBook, false, false>(b, p, dt); });
     case OpKind::friction:
       if (p.never_reverse)
-        return each([=](Block<R>& b) { op_friction<R, kBook, true>(b, p, width, height, dt); });
-      return each([=](Block<R>& b) { op_friction<R, kBook, false>(b, p, width, height, dt); });
+        return each([=](Block<R>& b) CALDER_MOVERS_INLINE {
+          op_friction<R, kBook, true>(b, p, width, height, dt);
+        });
+      return each([=](Block<R>& b) CALDER_MOVERS_INLINE {
+        op_friction<R, kBook, false>(b, p, width, height, dt);
+      });
     case OpKind::attractor:
       switch (p.law) {
         case AttractorLaw::clamp_distance:
-          return each([=](Block<R>& b) {
+          return each([=](Block<R>& b) CALDER_MOVERS_INLINE {
             op_attractor<R, kBook, AttractorLaw::clamp_distance, false>(b, p);
           });
         case AttractorLaw::clamp_squared:
-          return each([=](Block<R>& b) {
+          return each([=](Block<R>& b) CALDER_MOVERS_INLINE {
             op_attractor<R, kBook, AttractorLaw::clamp_squared, false>(b, p);
           });
         case AttractorLaw::plummer:
           if (p.eps == R(0))
-            return each(
-                [=](Block<R>& b) { op_attractor<R, kBook, AttractorLaw::plummer, false>(b, p); });
-          return each(
-              [=](Block<R>& b) { op_attractor<R, kBook, AttractorLaw::plummer, true>(b, p); });
+            return each([=](Block<R>& b) CALDER_MOVERS_INLINE {
+              op_attractor<R, kBook, AttractorLaw::plummer, false>(b, p);
+            });
+          return each([=](Block<R>& b) CALDER_MOVERS_INLINE {
+            op_attractor<R, kBook, AttractorLaw::plummer, true>(b, p);
+          });
       }
       return;
     case OpKind::edge_force:
-      return each([=](Block<R>& b) { op_edge_force<R, kBook>(b, p, width, height); });
+      return each([=](Block<R>& b)
+                      CALDER_MOVERS_INLINE { op_edge_force<R, kBook>(b, p, width, height); });
     case OpKind::fan:
-      return each([=](Block<R>& b) { op_fan<R, kBook>(b, p); });
+      return each([=](Block<R>& b) CALDER_MOVERS_INLINE { op_fan<R, kBook>(b, p); });
     case OpKind::lift:
-      return each([=](Block<R>& b) { op_lift<R, kBook>(b, p); });
+      return each([=](Block<R>& b) CALDER_MOVERS_INLINE { op_lift<R, kBook>(b, p); });
   }
 }
 
-// The update and the boundary over every vector of a chunk (accelerations
-// cleared, positions and velocities stored).
-template <class R>
-void update_chunk(Chunk<R>& chunk, std::size_t vectors, const Boundary& boundary, R width, R height,
-                  R dt) {
-  const auto each = [&](auto step_one) {
-    for (std::size_t v = 0; v < vectors; ++v) {
-      Block<R> b = load_block(chunk, v);
-      step_one(b);
-      store_block(chunk, b);
-    }
-  };
-  if (boundary.kind == BoundaryKind::bounce && boundary.use_radius) {
-    return each([=](Block<R>& b) { update_bounce<R, true>(b, boundary, width, height, dt); });
+// The fast kernels fold the ops whose acceleration is the same for every body
+// (gravity scaled by mass) into one constant: true, with it in (gx, gy), for
+// such an op.
+template <class R, bool kBook>
+[[gnu::always_inline]] inline bool constant_op(const Op& op, const Params<R>& p, R& gx, R& gy) {
+  if constexpr (kBook) return false;
+  if (op.kind == OpKind::gravity_scaled) {
+    gx = p.fx;
+    gy = p.fy;
+    return true;
   }
-  each([=](Block<R>& b) { update(b, boundary, width, height, dt); });
+  return false;
 }
 
-// Runs every step of the batch over a chunk of `vectors` vectors, one pass
-// per op and one for the update.
+// Runs every step of the batch over a chunk of `vectors` vectors. A step is
+// one pass over the chunk per op, each adding its force to the accelerations
+// in the chunk, but the last op's pass also runs the update, in registers,
+// and stores only positions and velocities. The accelerations are the tile's
+// on the first step and +0 on the others (the update clears them), so the
+// first pass of a later step doesn't read them. (One pass for every op and
+// the update together would store least, but then every vector goes through
+// the ops' dispatch: slower on AVX2, measured.)
 template <class R, bool kBook>
 void advance_chunk(const Plan& plan, const std::vector<Params<R>>& params, Chunk<R>& chunk,
-                   std::size_t vectors) {
+                   std::size_t vectors, std::vector<std::size_t>& passes) {
+  using V = typename Simd<R>::V;
   const R width = R(plan.width);
   const R height = R(plan.height);
   const R dt = R(plan.dt);
+  const Boundary boundary = plan.boundary;
+  const Walls<R> walls(boundary, width, height);
   for (int step = 0; step < plan.steps; ++step) {
+    // The fast kernels' constant accelerations, summed; the other ops, in order.
+    R cx = 0;
+    R cy = 0;
+    passes.clear();
     for (std::size_t k = 0; k < plan.ops.size(); ++k) {
-      apply_op<R, kBook>(chunk, vectors, plan.ops[k], params[k], step, width, height, dt);
+      R gx, gy;
+      if (constant_op<R, kBook>(plan.ops[k], params[k], gx, gy)) {
+        cx += gx;
+        cy += gy;
+      } else {
+        passes.push_back(k);
+      }
     }
-    update_chunk(chunk, vectors, plan.boundary, width, height, dt);
+    const V base_x = splat<V>(cx);
+    const V base_y = splat<V>(cy);
+    // Vector v as the first pass of the step sees it.
+    const auto first_load = [&](std::size_t v) CALDER_MOVERS_INLINE {
+      Block<R> b = load_block(chunk, v, step == 0);
+      if constexpr (!kBook) {
+        b.ax += base_x;
+        b.ay += base_y;
+      }
+      return b;
+    };
+    for (std::size_t q = 0; q + 1 < passes.size(); ++q) {
+      const std::size_t k = passes[q];
+      const auto each = [&](auto force) CALDER_MOVERS_INLINE {
+        for (std::size_t v = 0; v < vectors; ++v) {
+          Block<R> b = q == 0 ? first_load(v) : load_block(chunk, v, true);
+          force(b);
+          __builtin_memcpy(chunk.ax + b.at, &b.ax, sizeof(V));
+          __builtin_memcpy(chunk.ay + b.at, &b.ay, sizeof(V));
+        }
+      };
+      apply_op<R, kBook>(each, plan.ops[k], params[k], step, width, height, dt);
+    }
+    // The last pass: the last op, the update, the boundary.
+    const bool alone = passes.size() <= 1;
+    const auto last = [&](auto update_one) CALDER_MOVERS_INLINE {
+      const auto each = [&](auto force) CALDER_MOVERS_INLINE {
+        for (std::size_t v = 0; v < vectors; ++v) {
+          Block<R> b = alone ? first_load(v) : load_block(chunk, v, true);
+          force(b);
+          update_one(b);
+          __builtin_memcpy(chunk.x + b.at, &b.x, sizeof(V));
+          __builtin_memcpy(chunk.y + b.at, &b.y, sizeof(V));
+          __builtin_memcpy(chunk.vx + b.at, &b.vx, sizeof(V));
+          __builtin_memcpy(chunk.vy + b.at, &b.vy, sizeof(V));
+        }
+      };
+      if (passes.empty()) return each([](Block<R>&) CALDER_MOVERS_INLINE {});
+      const std::size_t k = passes.back();
+      apply_op<R, kBook>(each, plan.ops[k], params[k], step, width, height, dt);
+    };
+    if (boundary.kind == BoundaryKind::bounce && boundary.use_radius) {
+      last([=](Block<R>& b) CALDER_MOVERS_INLINE { update_bounce<R, true>(b, walls, dt); });
+    } else {
+      last([&](Block<R>& b) CALDER_MOVERS_INLINE { update(b, boundary, width, height, dt); });
+    }
   }
 }
 
@@ -634,7 +706,8 @@ void advance_tile(const Plan& plan, const Tile& tile) {
     chunk.area[i] = real ? R(tile.drag_area[k]) : R(1);
     chunk.mu[i] = real ? R(tile.friction[k]) : R(0);
   }
-  advance_chunk<R, kBook>(plan, params, chunk, vectors);
+  thread_local std::vector<std::size_t> passes;
+  advance_chunk<R, kBook>(plan, params, chunk, vectors, passes);
   for (std::size_t i = 0; i < tile.n; ++i) {
     tile.x[i] = chunk.x[i];
     tile.y[i] = chunk.y[i];
