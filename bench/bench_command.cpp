@@ -33,6 +33,7 @@
 #include "peers/learner_nbody.hpp"
 #include "peers/nbody_systems.hpp"
 #include "peers/rain_world.hpp"
+#include "peers/soa_rain.hpp"
 #include "progress.hpp"
 
 #ifndef CALDER_BUILD_TYPE
@@ -337,6 +338,7 @@ struct BarnesHutRow {
 struct Results {
   std::map<std::tuple<std::size_t, bool, int>, double> direct;  // (N, float32, threads): pairs/s
   std::map<std::tuple<std::size_t, int, int>, double> movers;   // (N, arithmetic, threads)
+  std::map<std::tuple<std::size_t, bool, int>, double> movers_floor;  // (N, float32, threads)
   std::vector<BarnesHutRow> barnes_hut;
   std::size_t direct_reference_n = 0;  // the largest direct N (Barnes-Hut's "vs direct")
 };
@@ -497,11 +499,41 @@ Section movers_section(const Plan& plan, Runner& runner, Results& results) {
   Section section;
   section.title = "movers, the rain scene: body-steps per second";
   Table table;
-  table.columns = {"what", ">N", "arithmetic", ">threads", ">body-steps/s", ">vs Box2D", "note"};
+  table.columns = {"what",          ">N",        "arithmetic", ">threads",
+                   ">body-steps/s", ">vs Box2D", ">vs floor",  "note"};
+  // The floor's copy for the movers' instruction set: AVX2 + FMA alone when
+  // the movers run their AVX2 kernels, else -march=native.
+  const bool avx2 = std::string(movers::kernel_name()) == "avx2+fma";
+  std::string floor_flags;
 
   for (const std::size_t n : plan.movers_n) {
     const World proto = peers::rain_world(n, Arithmetic::book, 1);
     const double bodies = static_cast<double>(n);
+
+    // The floor: the plain SoA loop of the same physics, in each precision.
+    std::map<std::pair<bool, int>, double> floor;  // (float32, threads)
+    std::vector<std::vector<std::string>> floor_rows;
+    for (const bool float32 : {false, true}) {
+      for (int threads : {1, 2}) {
+        runner.status(std::string("SoA floor, N = ") + count_text(n) + ", " +
+                      precision_name(float32) + ", " + std::to_string(threads) + " thread(s)");
+        peers::SoaRain soa(proto, float32, avx2, threads);
+        floor_flags = soa.flags();
+        const Measured m = runner.measure([&] {
+          soa.step(World::kBatchSteps);
+          return bodies * World::kBatchSteps;
+        });
+        floor[{float32, threads}] = m.rate;
+        results.movers_floor[{n, float32, threads}] = m.rate;
+        floor_rows.push_back({"floor: plain SoA loop", count_text(n), precision_name(float32),
+                              std::to_string(threads), rate_text(m.rate), "", "1x",
+                              timing_note(m, "batch")});
+      }
+    }
+    // Against the floor of the same precision (book: float64) and threads.
+    const auto vs_floor = [&](double rate, bool float32, int threads) {
+      return ratio_text(rate / floor[{float32, threads}]);
+    };
 
     double box2d_rate = 0.0;
     for (const peers::Box2dBodies kind :
@@ -525,7 +557,11 @@ Section movers_section(const Plan& plan, Runner& runner, Results& results) {
       table.rows.push_back({circles ? "Box2D 2.4: circles, collisions filtered out"
                                     : "Box2D 2.4: bodies without shapes",
                             count_text(n), "float32", "1", rate_text(m.rate),
-                            ratio_text(m.rate / box2d_rate), note});
+                            ratio_text(m.rate / box2d_rate), vs_floor(m.rate, true, 1), note});
+    }
+    for (std::vector<std::string>& row : floor_rows) {
+      row[5] = ratio_text(floor[{row[2] == "float32", std::stoi(row[3])}] / box2d_rate);
+      table.rows.push_back(std::move(row));
     }
 
     {
@@ -538,7 +574,7 @@ Section movers_section(const Plan& plan, Runner& runner, Results& results) {
       });
       table.rows.push_back({"calder, plain loops (no kernels)", count_text(n), "book", "1",
                             rate_text(m.rate), ratio_text(m.rate / box2d_rate),
-                            timing_note(m, "step")});
+                            vs_floor(m.rate, false, 1), timing_note(m, "step")});
     }
 
     for (int a = 0; a < 3; ++a) {
@@ -555,7 +591,8 @@ Section movers_section(const Plan& plan, Runner& runner, Results& results) {
         results.movers[{n, a, threads}] = m.rate;
         table.rows.push_back({"calder movers", count_text(n), kArithmeticNames[a],
                               std::to_string(threads), rate_text(m.rate),
-                              ratio_text(m.rate / box2d_rate), timing_note(m, "batch")});
+                              ratio_text(m.rate / box2d_rate), vs_floor(m.rate, a == 2, threads),
+                              timing_note(m, "batch")});
       }
     }
   }
@@ -570,6 +607,12 @@ Section movers_section(const Plan& plan, Runner& runner, Results& results) {
           " kernels; book is bit-identical to the plain loops, float64 and float32 trade the "
           "last bits for speed (calder/movers.hpp). plain loops: the same world stepped body by "
           "body by calder's core.",
+      "floor: the rain physics as the plain structure-of-arrays loop anyone would write "
+      "(bench/peers/soa_rain_loop.cpp: one pass over the arrays per step, branch-free, "
+      "gravity, drag, the bounce), compiled " +
+          floor_flags +
+          "; on 2 threads each runs every step on its own half of the arrays. vs floor: "
+          "against the floor of the same precision (book: float64) and threads.",
       "Box2D 2.4 (single-threaded, float): forces applied per body (ApplyForceToCenter), "
       "b2World::Step, then the bounce per body. vs Box2D compares with its circles row: a circle "
       "fixture per body in the broad phase, body-body collisions filtered out, as the issue asks. "
@@ -780,6 +823,31 @@ Section targets_section(const Plan& plan, const Results& results) {
   add(rate_target("movers float64, N = 100,000, 2 threads: >= 1e9 body-steps/s", kTargetMovers64,
                   "body-steps/s", lookup(results.movers, std::make_tuple(kTargetMoversN, 1, 2)),
                   plan.movers));
+
+  // Movers against the plain SoA loop of the same precision, 2 threads, every N.
+  for (int a = 0; a < 3; ++a) {
+    const double goal = a == 0 ? 0.5 : 1.0;
+    const std::string target =
+        std::string("movers ") + kArithmeticNames[a] +
+        " vs the SoA floor, 2 threads, every N: >= " + printf_text("%.2g", goal) + "x";
+    if (!plan.movers) {
+      add({target, "-", "not run"});
+      continue;
+    }
+    Scaling lowest;
+    for (const auto& [key, floor] : results.movers_floor) {
+      const auto [n, float32, threads] = key;
+      if (threads != 2 || float32 != (a == 2)) continue;
+      const auto rate = lookup(results.movers, std::make_tuple(n, a, 2));
+      if (rate) worst(lowest, floor, *rate, "N = " + count_text(n));
+    }
+    if (lowest.where.empty()) {
+      add({target, "-", "not measured"});
+    } else {
+      add({target, "lowest " + ratio_text(lowest.ratio) + " (" + lowest.where + ")",
+           pass(lowest.ratio >= goal)});
+    }
+  }
 
   // Barnes-Hut: the fastest 2-thread row at 10^6 that meets the accuracy.
   for (const bool float32 : {false, true}) {

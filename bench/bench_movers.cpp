@@ -9,6 +9,10 @@
 //                                2 float32)
 //   CalderPlain/N                the same world stepped by the plain loops
 //                                (no kernels: the book's loop in C++)
+//   SoaFloor/N/float32/threads   the movers' floor: the rain physics as a plain
+//                                SoA loop, -O3 -march=native -ffast-math
+//                                (float32 0: double, 1: float; the AVX2 copy
+//                                when the movers run their AVX2 kernels)
 //   Box2d/N/kind                 Box2D 2.4 (kind 0 circles with collisions
 //                                filtered out, 1 bodies without shapes)
 //
@@ -16,9 +20,11 @@
 #include <benchmark/benchmark.h>
 
 #include <cstdint>
+#include <string>
 
 #include "calder/movers.hpp"
 #include "peers/rain_world.hpp"
+#include "peers/soa_rain.hpp"
 
 namespace {
 
@@ -47,6 +53,18 @@ void CalderPlain(benchmark::State& state) {
   calder::movers::install();
 }
 
+void SoaFloor(benchmark::State& state) {
+  calder::movers::install();
+  const auto n = static_cast<std::size_t>(state.range(0));
+  const bool avx2 = std::string(calder::movers::kernel_name()) == "avx2+fma";
+  calder::peers::SoaRain soa(calder::peers::rain_world(n), state.range(1) != 0, avx2,
+                             static_cast<int>(state.range(2)));
+  for (auto _ : state) soa.step(calder::World::kBatchSteps);
+  state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(n) *
+                          calder::World::kBatchSteps);
+  state.SetLabel(soa.flags());
+}
+
 void Box2d(benchmark::State& state) {
   const auto n = static_cast<std::size_t>(state.range(0));
   const calder::World world = calder::peers::rain_world(n);
@@ -60,6 +78,11 @@ void Box2d(benchmark::State& state) {
 BENCHMARK(Calder)
     ->ArgNames({"N", "arithmetic", "threads"})
     ->ArgsProduct({{1000, 100000, 1000000}, {0, 1, 2}, {1, 2}})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+BENCHMARK(SoaFloor)
+    ->ArgNames({"N", "float32", "threads"})
+    ->ArgsProduct({{1000, 100000, 1000000}, {0, 1}, {1, 2}})
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 BENCHMARK(CalderPlain)->ArgNames({"N"})->Arg(1000)->Arg(100000)->Unit(benchmark::kMillisecond);

@@ -128,6 +128,8 @@ void FmaPeak(benchmark::State& state) {
       benchmark::Counter(flops / 2.0 / peers::kFlopsPerPair64Rsqrt, benchmark::Counter::kIsRate);
   state.counters["floor64_sqrt_pairs/s"] =
       benchmark::Counter(flops / 2.0 / peers::kFlopsPerPair64Sqrt, benchmark::Counter::kIsRate);
+  state.counters["floor64_float_rsqrt_pairs/s"] = benchmark::Counter(
+      flops / 2.0 / peers::kFlopsPerPair64FloatRsqrt, benchmark::Counter::kIsRate);
 }
 // Registered in main() for the widths this CPU has (peers::fma_widths()).
 

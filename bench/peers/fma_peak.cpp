@@ -113,6 +113,7 @@ PairFloor pair_floor(std::string_view nbody_kernel_name) {
     floor.flops_per_pair64 = kFlopsPerPair64Rsqrt;
   } else if (nbody_kernel_name == "avx2+fma") {
     floor.bits = 256;
+    floor.flops_per_pair64 = kFlopsPerPair64FloatRsqrt;
   }
   return floor;
 }

@@ -16,9 +16,14 @@ namespace calder::peers {
 // kernels compile (objdump of kernels.cpp.o), Plummer law, eps > 0:
 //   float32, rsqrt estimate + 1 Newton step:   2 sub, 4 FMA, 1 rsqrt, 5 mul  = 18
 //   float64, avx512: rsqrt14 + 2 Newton steps: 2 sub, 6 FMA, 1 rsqrt, 8 mul  = 23
-//   float64, avx2 / sse2: sqrt + div:          2 sub, 4 FMA, 1 sqrt, 1 mul, 1 div = 13
+//   float64, avx2: float's rsqrt estimate (2 conversions) + 3 Newton steps:
+//                                              2 sub, 7 FMA, 1 rsqrt, 2 cvt, 10 mul = 29
+//   float64, sse2: sqrt + div:                 2 sub, 4 FMA, 1 sqrt, 1 mul, 1 div = 13
+// (A floor of the instructions the kernel runs: avx2's float64 kernels ran the
+// 13 of sqrt + div until the divider, not the FMAs, proved their bound.)
 inline constexpr double kFlopsPerPair32 = 18.0;
 inline constexpr double kFlopsPerPair64Rsqrt = 23.0;
+inline constexpr double kFlopsPerPair64FloatRsqrt = 29.0;
 inline constexpr double kFlopsPerPair64Sqrt = 13.0;
 
 // The vector widths (bits) whose FMA peak this build and CPU can measure,

@@ -19,11 +19,11 @@
 //
 // How: the bodies are cut into tiles of kTile; one thread advances a tile
 // through a whole batch of steps (World::kBatchSteps) while it sits in the
-// L1 cache, one pass per field per step over the tile's arrays, each pass a
-// loop the compiler vectorises (AVX-512, AVX2 + FMA or SSE2, as
-// calder::nbody's kernels). Bodies don't interact, so no order between tiles
-// matters: results are bit-identical for any number of threads, and there is
-// no broad phase to pay for.
+// L1 cache, one pass per field per step over the tile's arrays (the last
+// fused with the update), each pass a loop over vectors of bodies (AVX-512,
+// AVX2 + FMA or SSE2, as calder::nbody's kernels). Bodies don't interact,
+// so no order between tiles matters: results are bit-identical for any
+// number of threads, and there is no broad phase to pay for.
 //
 // Arithmetic (WorldDef::arithmetic):
 //   book     the same operations in the same order as the plain loops (no

@@ -7,9 +7,16 @@
 // Included by kernels_book.cpp (compiled with -ffp-contract=off: no fused
 // multiply-adds, so the book kernels give the plain loops' bits) and
 // kernels_fast.cpp (-ffp-contract=fast), each compiled once per instruction
-// set. A tile is cut into blocks of kBlockVectors vector registers (GCC
-// vector extensions); a block's state stays in registers through every step
-// of the batch, so the steps cost arithmetic, not memory traffic. Conditions
+// set. A tile (kTile bodies at most) is copied into a Chunk, arrays of R that
+// stay in the L1 cache through every step of the batch; each step runs over
+// the chunk one vector of bodies at a time (GCC vector extensions): its
+// position and velocity in registers, the constants an op uses (mass, radius,
+// ...) read from the chunk by that op only. The out-of-order core overlaps
+// consecutive vectors, so the steps cost arithmetic, not memory traffic, and
+// the live registers stay few (x, y, vx, vy, ax, ay and an op's temporaries)
+// whatever the target's register file: 16 with AVX2, 32 with AVX-512. An
+// earlier design kept 4 vectors of 11 quantities in registers through the
+// batch and spilled hundreds of them to the stack on AVX2. Conditions
 // are computed for every lane and select results, and lanes that must not
 // change add exactly +0 or keep their old value. (A sum that is exactly zero is +0 in IEEE
 // round-to-nearest unless both terms are -0, so accelerations, which start at +0, are never -0 and
@@ -20,11 +27,20 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <limits>
 #include <vector>
+
+#if defined(__x86_64__) || defined(__i386__)
+#include <immintrin.h>
+#endif
 
 #include "../integrate.hpp"
 #include "calder/movers.hpp"
 #include "plan.hpp"
+
+// The kernels' lambdas (an op's force, a pass over a chunk) must be inlined
+// into their vector loops: called, a Block goes through memory.
+#define CALDER_MOVERS_INLINE __attribute__((always_inline))
 
 namespace calder::movers::detail {
 // Internal linkage: each kernel file has its own copies, built with its own
@@ -53,29 +69,103 @@ struct Simd<float> {
   using M = decltype(V{} < V{});
 };
 
-// Vectors per block: a block's state stays in registers through all the
-// steps of a batch, and S independent vectors hide the latency of each
-// step's chain (sqrt, division) behind one another.
-constexpr int kBlockVectors = 4;
+// The tile's bodies in R, padded to whole vectors (lanes past the tile get a
+// harmless body: unit mass at the origin, at rest), 64-byte aligned.
+template <class R>
+struct Chunk {
+  static constexpr std::size_t kSize = kTile + kVectorBytes / sizeof(R);
+  alignas(64) R x[kSize], y[kSize], vx[kSize], vy[kSize], ax[kSize], ay[kSize];
+  alignas(64) R m[kSize], inv_m[kSize], r[kSize], area[kSize], mu[kSize];
+};
 
+// One vector of a chunk's bodies: the state a step changes, in registers; the
+// constants, loaded from the chunk by the ops that use them.
 template <class R>
 struct Block {
   using V = typename Simd<R>::V;
   static constexpr int kLanes = static_cast<int>(kVectorBytes / sizeof(R));
-  static constexpr int kBodies = kBlockVectors * kLanes;
-  V x[kBlockVectors], y[kBlockVectors], vx[kBlockVectors], vy[kBlockVectors];
-  V ax[kBlockVectors], ay[kBlockVectors];
-  V m[kBlockVectors], inv_m[kBlockVectors], r[kBlockVectors], area[kBlockVectors],
-      mu[kBlockVectors];
+  V x, y, vx, vy, ax, ay;
+  const Chunk<R>* chunk;
+  std::size_t at;  // index of the first lane in the chunk's arrays
+
+  [[gnu::always_inline]] static V load(const R* from) {
+    V v;
+    __builtin_memcpy(&v, from, sizeof v);
+    return v;
+  }
+  [[gnu::always_inline]] V m() const { return load(chunk->m + at); }
+  [[gnu::always_inline]] V inv_m() const { return load(chunk->inv_m + at); }
+  [[gnu::always_inline]] V r() const { return load(chunk->r + at); }
+  [[gnu::always_inline]] V area() const { return load(chunk->area + at); }
+  [[gnu::always_inline]] V mu() const { return load(chunk->mu + at); }
 };
 
-// Lane by lane; GCC turns the loop into one vsqrtp* (with -fno-math-errno).
+// Vector v of a chunk; its accelerations from the chunk (the tile's) or +0.
+template <class R>
+[[gnu::always_inline]] inline Block<R> load_block(Chunk<R>& chunk, std::size_t v,
+                                                  bool accelerations) {
+  Block<R> b;
+  b.chunk = &chunk;
+  b.at = v * static_cast<std::size_t>(Block<R>::kLanes);
+  b.x = Block<R>::load(chunk.x + b.at);
+  b.y = Block<R>::load(chunk.y + b.at);
+  b.vx = Block<R>::load(chunk.vx + b.at);
+  b.vy = Block<R>::load(chunk.vy + b.at);
+  b.ax = accelerations ? Block<R>::load(chunk.ax + b.at) : typename Simd<R>::V{};
+  b.ay = accelerations ? Block<R>::load(chunk.ay + b.at) : typename Simd<R>::V{};
+  return b;
+}
+
+// Correctly rounded square roots, one instruction per vector. (A lane loop
+// let GCC, tuned for 256-bit vectors, split a 512-bit sqrt into two halves
+// through the stack: a failed store forwarding on every use. The maskz forms:
+// the plain ones trip -Wmaybe-uninitialized in GCC 12's headers.)
 template <class V>
 [[gnu::always_inline]] inline V vsqrt(V v) {
+  [[maybe_unused]] constexpr bool single = sizeof(v[0]) == 4;
+#if defined(__AVX512F__)
+  if constexpr (sizeof(V) == 64) {
+    if constexpr (single) return V(_mm512_maskz_sqrt_ps(0xFFFF, __m512(v)));
+    if constexpr (!single) return V(_mm512_maskz_sqrt_pd(0xFF, __m512d(v)));
+  }
+#endif
+#if defined(__AVX__)
+  if constexpr (sizeof(V) == 32) {
+    if constexpr (single) return V(_mm256_sqrt_ps(__m256(v)));
+    if constexpr (!single) return V(_mm256_sqrt_pd(__m256d(v)));
+  }
+#endif
   constexpr int lanes = static_cast<int>(sizeof(V) / sizeof(v[0]));
   V out = v;
   for (int l = 0; l < lanes; ++l) out[l] = std::sqrt(v[l]);
   return out;
+}
+
+// |v| for the fast float32 kernels: the hardware's reciprocal square root
+// estimate (relative error < 2^-14 with AVX-512, 1.5 * 2^-12 with AVX) and one
+// Newton step, about 2^-22, as -ffast-math compiles sqrtf; exact 0 at 0.
+// Elsewhere (float64, book) the correctly rounded vsqrt.
+template <class R, bool kBook, class V>
+[[gnu::always_inline]] inline V vlength(V sq) {
+#if defined(__SSE__)
+  if constexpr (!kBook && sizeof(R) == 4) {
+    V estimate;
+#if defined(__AVX512F__)
+    if constexpr (sizeof(V) == 64) estimate = V(_mm512_maskz_rsqrt14_ps(0xFFFF, __m512(sq)));
+#endif
+#if defined(__AVX__)
+    if constexpr (sizeof(V) == 32) estimate = V(_mm256_rsqrt_ps(__m256(sq)));
+#endif
+#if defined(__SSE__)
+    if constexpr (sizeof(V) == 16) estimate = V(_mm_rsqrt_ps(__m128(sq)));
+#endif
+    // y' = y (3 - x y^2) / 2; |v| = x y', and 0 where x = 0 (y = inf).
+    const V half = estimate * R(0.5);
+    const V refined = half * (R(3) - sq * estimate * estimate);
+    return sq > R(0) ? sq * refined : V{};
+  }
+#endif
+  return vsqrt(sq);
 }
 
 template <class V, class R>
@@ -121,17 +211,17 @@ struct Params {
 // acceleration += force / mass (book) or force * (1 / mass) (fast), in the
 // lanes where apply is set.
 template <class R, bool kBook, class V, class M>
-[[gnu::always_inline]] inline void add_force(Block<R>& b, int s, M apply, V fx, V fy) {
+[[gnu::always_inline]] inline void add_force(Block<R>& b, M apply, V fx, V fy) {
   V ax, ay;
   if constexpr (kBook) {
-    ax = b.ax[s] + fx / b.m[s];
-    ay = b.ay[s] + fy / b.m[s];
+    ax = b.ax + fx / b.m();
+    ay = b.ay + fy / b.m();
   } else {
-    ax = b.ax[s] + fx * b.inv_m[s];
-    ay = b.ay[s] + fy * b.inv_m[s];
+    ax = b.ax + fx * b.inv_m();
+    ay = b.ay + fy * b.inv_m();
   }
-  b.ax[s] = apply ? ax : b.ax[s];
-  b.ay[s] = apply ? ay : b.ay[s];
+  b.ax = apply ? ax : b.ax;
+  b.ay = apply ? ay : b.ay;
 }
 
 // Vec2::limit(max) on (fx, fy): if |f|^2 > max^2, f / |f| * max.
@@ -145,97 +235,99 @@ template <class V>
 }
 
 template <class R, bool kBook>
-void op_uniform(Block<R>& b, R fx, R fy) {
+[[gnu::always_inline]] inline void op_uniform(Block<R>& b, R fx, R fy) {
   using V = typename Simd<R>::V;
   using M = typename Simd<R>::M;
-  for (int s = 0; s < kBlockVectors; ++s) {
-    add_force<R, kBook>(b, s, ~M{}, splat<V>(fx), splat<V>(fy));
-  }
+  { add_force<R, kBook>(b, ~M{}, splat<V>(fx), splat<V>(fy)); }
 }
 
 template <class R, bool kBook>
-void op_gravity_scaled(Block<R>& b, R gx, R gy) {
-  for (int s = 0; s < kBlockVectors; ++s) {
+[[gnu::always_inline]] inline void op_gravity_scaled(Block<R>& b, R gx, R gy) {
+  {
     if constexpr (kBook) {
       // p5.Vector.mult(gravity, mass), then applyForce divides by mass.
-      b.ax[s] += gx * b.m[s] / b.m[s];
-      b.ay[s] += gy * b.m[s] / b.m[s];
+      b.ax += gx * b.m() / b.m();
+      b.ay += gy * b.m() / b.m();
     } else {
-      b.ax[s] += gx;
-      b.ay[s] += gy;
+      b.ax += gx;
+      b.ay += gy;
     }
   }
 }
 
-// Quadratic drag -c |v| v area, where strictly inside the op's region.
-template <class R, bool kBook, bool kNeverReverse>
-void op_drag(Block<R>& b, const Params<R>& p, R dt) {
+// Quadratic drag -c |v| v area, where strictly inside the op's region
+// (everywhere: on every body, as the plain loops' Drag).
+template <class R, bool kBook, bool kNeverReverse, bool kEverywhere>
+[[gnu::always_inline]] inline void op_drag(Block<R>& b, const Params<R>& p, R dt) {
   using V = typename Simd<R>::V;
-  for (int s = 0; s < kBlockVectors; ++s) {
-    const V vx = b.vx[s];
-    const V vy = b.vy[s];
-    const auto inside =
-        (b.x[s] > p.x_min) & (b.x[s] < p.x_max) & (b.y[s] > p.y_min) & (b.y[s] < p.y_max);
-    const V speed = vsqrt(vx * vx + vy * vy);
+  {
+    const V vx = b.vx;
+    const V vy = b.vy;
+    using M = typename Simd<R>::M;
+    const M inside = kEverywhere
+                         ? ~M{}
+                         : M((b.x > p.x_min) & (b.x < p.x_max) & (b.y > p.y_min) & (b.y < p.y_max));
+    const V speed = vlength<R, kBook>(vx * vx + vy * vy);
     if constexpr (kBook) {
       // calder::drag: magnitude c * speed * speed * area; -v set to it
       // (normalize multiplies by 1 / |v| unless |v| = 0).
-      const V magnitude = p.c * speed * speed * b.area[s];
+      const V magnitude = p.c * speed * speed * b.area();
       const V inv = R(1) / (speed != R(0) ? speed : splat<V>(R(1)));
       V fx = -vx * inv * magnitude;
       V fy = -vy * inv * magnitude;
-      if constexpr (kNeverReverse) limit(fx, fy, b.m[s] * speed / dt);
-      add_force<R, true>(b, s, inside, fx, fy);
+      if constexpr (kNeverReverse) limit(fx, fy, b.m() * speed / dt);
+      add_force<R, true>(b, inside, fx, fy);
     } else {
       // a = -k v with k = c area |v| / m; never reversing: k dt <= 1.
-      V k = p.c * b.area[s] * speed * b.inv_m[s];
+      V k = p.c * b.area() * speed * b.inv_m();
       if constexpr (kNeverReverse) k = k < R(1) / dt ? k : splat<V>(R(1) / dt);
-      b.ax[s] = inside ? b.ax[s] - k * vx : b.ax[s];
-      b.ay[s] = inside ? b.ay[s] - k * vy : b.ay[s];
+      b.ax = inside ? b.ax - k * vx : b.ax;
+      b.ay = inside ? b.ay - k * vy : b.ay;
     }
   }
 }
 
 // Kinetic friction -mu N v-hat on bodies touching the op's surface.
 template <class R, bool kBook, bool kNeverReverse>
-void op_friction(Block<R>& b, const Params<R>& p, R width, R height, R dt) {
+[[gnu::always_inline]] inline void op_friction(Block<R>& b, const Params<R>& p, R width, R height,
+                                               R dt) {
   using V = typename Simd<R>::V;
-  for (int s = 0; s < kBlockVectors; ++s) {
-    const V vx = b.vx[s];
-    const V vy = b.vy[s];
-    const V r = b.r[s];
+  {
+    const V vx = b.vx;
+    const V vy = b.vy;
+    const V r = b.r();
     // calder::touches_edge, term by term.
     typename Simd<R>::M touching{};
     switch (p.surface) {
       case Edge::left:
-        touching = b.x[s] < r + p.tolerance;
+        touching = b.x < r + p.tolerance;
         break;
       case Edge::right:
-        touching = b.x[s] > width - r - p.tolerance;
+        touching = b.x > width - r - p.tolerance;
         break;
       case Edge::top:
-        touching = b.y[s] < r + p.tolerance;
+        touching = b.y < r + p.tolerance;
         break;
       case Edge::bottom:
-        touching = b.y[s] > height - r - p.tolerance;
+        touching = b.y > height - r - p.tolerance;
         break;
     }
-    const V own = b.mu[s];
+    const V own = b.mu();
     const V mu = own != own ? splat<V>(p.c) : own;  // NaN: no coefficient of its own
-    const V speed = vsqrt(vx * vx + vy * vy);
+    const V speed = vlength<R, kBook>(vx * vx + vy * vy);
     if constexpr (kBook) {
       const V magnitude = mu * p.normal;
       const V inv = R(1) / (speed != R(0) ? speed : splat<V>(R(1)));
       V fx = -vx * inv * magnitude;
       V fy = -vy * inv * magnitude;
-      if constexpr (kNeverReverse) limit(fx, fy, b.m[s] * speed / dt);
-      add_force<R, true>(b, s, touching, fx, fy);
+      if constexpr (kNeverReverse) limit(fx, fy, b.m() * speed / dt);
+      add_force<R, true>(b, touching, fx, fy);
     } else {
       const V moving = speed != R(0) ? speed : splat<V>(R(1));
-      V k = speed != R(0) ? mu * p.normal * b.inv_m[s] / moving : splat<V>(R(0));
+      V k = speed != R(0) ? mu * p.normal * b.inv_m() / moving : splat<V>(R(0));
       if constexpr (kNeverReverse) k = k < R(1) / dt ? k : splat<V>(R(1) / dt);
-      b.ax[s] = touching ? b.ax[s] - k * vx : b.ax[s];
-      b.ay[s] = touching ? b.ay[s] - k * vy : b.ay[s];
+      b.ax = touching ? b.ax - k * vx : b.ax;
+      b.ay = touching ? b.ay - k * vy : b.ay;
     }
   }
 }
@@ -243,16 +335,16 @@ void op_friction(Block<R>& b, const Params<R>& p, R width, R height, R dt) {
 // A fixed attractor at (px, py) of mass M: calder::attraction(source =
 // attractor, target = body) for the inverse-square laws.
 template <class R, bool kBook, AttractorLaw kLaw, bool kSoftened>
-void op_attractor(Block<R>& b, const Params<R>& p) {
+[[gnu::always_inline]] inline void op_attractor(Block<R>& b, const Params<R>& p) {
   using V = typename Simd<R>::V;
   using M = typename Simd<R>::M;
-  for (int s = 0; s < kBlockVectors; ++s) {
-    const V rx = p.px - b.x[s];
-    const V ry = p.py - b.y[s];
+  {
+    const V rx = p.px - b.x;
+    const V ry = p.py - b.y;
     const V d_sq = rx * rx + ry * ry;
     const V d = vsqrt(d_sq);
     if constexpr (kBook) {
-      const V m = b.m[s];
+      const V m = b.m();
       // strength_of: G * M * m, or G * (M * m), over the denominator.
       const V numerator = p.masses_first ? p.G * (p.mass * m) : p.G * p.mass * m;
       V strength;
@@ -276,7 +368,7 @@ void op_attractor(Block<R>& b, const Params<R>& p) {
       }
       // set_mag(strength): normalize (times 1 / |r| unless 0), then times strength.
       const V inv = R(1) / (d != R(0) ? d : splat<V>(R(1)));
-      add_force<R, true>(b, s, apply, rx * inv * strength, ry * inv * strength);
+      add_force<R, true>(b, apply, rx * inv * strength, ry * inv * strength);
     } else {
       // acceleration = G M w r, with w = 1 / (d_c^2 d) (clamped) or 1 / s^3 (Plummer).
       V denominator;
@@ -294,226 +386,336 @@ void op_attractor(Block<R>& b, const Params<R>& p) {
       }
       const auto zero = d_sq == R(0);
       const V w = zero ? splat<V>(R(0)) : R(1) / (zero ? splat<V>(R(1)) : denominator);
-      b.ax[s] += p.gm * w * rx;
-      b.ay[s] += p.gm * w * ry;
+      b.ax += p.gm * w * rx;
+      b.ay += p.gm * w * ry;
     }
   }
 }
 
 // calder::edge_force: strength * (margin - d) / margin within margin of each edge.
 template <class R, bool kBook>
-void op_edge_force(Block<R>& b, const Params<R>& p, R width, R height) {
+[[gnu::always_inline]] inline void op_edge_force(Block<R>& b, const Params<R>& p, R width,
+                                                 R height) {
   using V = typename Simd<R>::V;
   using M = typename Simd<R>::M;
   const auto push = [&](V d) {
     const V inward = p.c * (p.margin - d) / p.margin;
     return d < p.margin ? inward : splat<V>(R(0));
   };
-  for (int s = 0; s < kBlockVectors; ++s) {
-    const V x = b.x[s];
-    const V y = b.y[s];
-    add_force<R, kBook>(b, s, ~M{}, push(x) - push(width - x), push(y) - push(height - y));
+  {
+    const V x = b.x;
+    const V y = b.y;
+    add_force<R, kBook>(b, ~M{}, push(x) - push(width - x), push(y) - push(height - y));
   }
 }
 
 // calder::fan: away from (px, py), strength * (1 - d / reach) for 0 < d < reach.
 template <class R, bool kBook>
-void op_fan(Block<R>& b, const Params<R>& p) {
+[[gnu::always_inline]] inline void op_fan(Block<R>& b, const Params<R>& p) {
   using V = typename Simd<R>::V;
-  for (int s = 0; s < kBlockVectors; ++s) {
-    const V awx = b.x[s] - p.px;
-    const V awy = b.y[s] - p.py;
+  {
+    const V awx = b.x - p.px;
+    const V awy = b.y - p.py;
     const V d = vsqrt(awx * awx + awy * awy);
     const auto apply = (d != R(0)) & (d < p.reach);
     const V magnitude = p.c * (R(1) - d / p.reach);
     const V inv = R(1) / (d != R(0) ? d : splat<V>(R(1)));
-    add_force<R, kBook>(b, s, apply, awx * inv * magnitude, awy * inv * magnitude);
+    add_force<R, kBook>(b, apply, awx * inv * magnitude, awy * inv * magnitude);
   }
 }
 
 // calder::lift: (vy, -vx) set to coefficient * |v|^2.
 template <class R, bool kBook>
-void op_lift(Block<R>& b, const Params<R>& p) {
+[[gnu::always_inline]] inline void op_lift(Block<R>& b, const Params<R>& p) {
   using V = typename Simd<R>::V;
   using M = typename Simd<R>::M;
-  for (int s = 0; s < kBlockVectors; ++s) {
-    const V vx = b.vx[s];
-    const V vy = b.vy[s];
+  {
+    const V vx = b.vx;
+    const V vy = b.vy;
     const V magnitude = p.c * (vx * vx + vy * vy);
     const V len = vsqrt(vy * vy + vx * vx);
     const V inv = R(1) / (len != R(0) ? len : splat<V>(R(1)));
-    add_force<R, kBook>(b, s, ~M{}, vy * inv * magnitude, -vx * inv * magnitude);
+    add_force<R, kBook>(b, ~M{}, vy * inv * magnitude, -vx * inv * magnitude);
   }
 }
+
+// The bounce's parameters, converted once. An edge that doesn't bounce gets
+// an infinite wall that no coordinate crosses, so that the bounce needs
+// neither branches nor masks beyond the comparisons; one that bounces, the
+// book's bounds exactly.
+template <class R>
+struct Walls {
+  R right, bottom;  // the canvas's width and height, or +infinity
+  R left, top;      // 0, or -infinity (added to the radius: the bound)
+  R reverse;
+  bool before;
+  explicit Walls(const Boundary& boundary, R width, R height)
+      : right(boundary.edges.right ? width : std::numeric_limits<R>::infinity()),
+        bottom(boundary.edges.bottom ? height : std::numeric_limits<R>::infinity()),
+        left(boundary.edges.left ? R(0) : -std::numeric_limits<R>::infinity()),
+        top(boundary.edges.top ? R(0) : -std::numeric_limits<R>::infinity()),
+        reverse(R(-boundary.restitution)),
+        before(boundary.timing == BoundaryTiming::before_update) {}
+};
 
 // World::boundary_one's bounce: right before left, bottom before top; clamp,
 // then reverse.
 template <class R, bool kUseRadius>
-[[gnu::always_inline]] inline void bounce(Block<R>& b, int s, const Boundary& boundary, R width,
-                                          R height, R reverse) {
+[[gnu::always_inline]] inline void bounce(Block<R>& b, const Walls<R>& walls) {
   using V = typename Simd<R>::V;
-  using M = typename Simd<R>::M;
-  const V r = kUseRadius ? b.r[s] : splat<V>(R(0));
-  const V x = b.x[s];
-  const V y = b.y[s];
-  const V x_hi = width - r;
-  const V y_hi = height - r;
-  const M none{};
-  const M right = boundary.edges.right ? M(x > x_hi) : none;
-  const M left = boundary.edges.left ? M((x < r) & ~right) : none;
-  const M bottom = boundary.edges.bottom ? M(y > y_hi) : none;
-  const M top = boundary.edges.top ? M((y < r) & ~bottom) : none;
-  V nx = right ? x_hi : x;
+  const V r = kUseRadius ? b.r() : splat<V>(R(0));
+  const V x = b.x;
+  const V y = b.y;
+  const auto right = x > walls.right - r;
+  const auto left = (x < r + walls.left) & ~right;  // r + 0 is r, r - inf is -inf
+  const auto bottom = y > walls.bottom - r;
+  const auto top = (y < r + walls.top) & ~bottom;
+  V nx = right ? walls.right - r : x;
   nx = left ? r : nx;
-  V ny = bottom ? y_hi : y;
+  V ny = bottom ? walls.bottom - r : y;
   ny = top ? r : ny;
-  b.x[s] = nx;
-  b.y[s] = ny;
-  b.vx[s] = (right | left) ? b.vx[s] * reverse : b.vx[s];
-  b.vy[s] = (bottom | top) ? b.vy[s] * reverse : b.vy[s];
+  b.x = nx;
+  b.y = ny;
+  b.vx = (right | left) ? b.vx * walls.reverse : b.vx;
+  b.vy = (bottom | top) ? b.vy * walls.reverse : b.vy;
 }
 
 // The update (semi-implicit Euler, acceleration cleared) and the bounce.
 template <class R, bool kUseRadius>
-void update_bounce(Block<R>& b, const Boundary& boundary, R width, R height, R dt) {
-  const R reverse = R(-boundary.restitution);
-  const bool before = boundary.timing == BoundaryTiming::before_update;
-  for (int s = 0; s < kBlockVectors; ++s) {
-    if (before) bounce<R, kUseRadius>(b, s, boundary, width, height, reverse);
-    calder::detail::kick_drift(b.x[s], b.y[s], b.vx[s], b.vy[s], b.ax[s], b.ay[s],
-                               splat<typename Simd<R>::V>(dt));
-    if (!before) bounce<R, kUseRadius>(b, s, boundary, width, height, reverse);
-  }
+[[gnu::always_inline]] inline void update_bounce(Block<R>& b, const Walls<R>& walls, R dt) {
+  if (walls.before) bounce<R, kUseRadius>(b, walls);
+  calder::detail::kick_drift(b.x, b.y, b.vx, b.vy, b.ax, b.ay, splat<typename Simd<R>::V>(dt));
+  if (!walls.before) bounce<R, kUseRadius>(b, walls);
 }
 
 // The periodic wrap, lane by lane (rare and branchy: not worth vectorising).
 template <class R>
-void wrap(Block<R>& b, const Boundary& boundary, R width, R height) {
-  for (int s = 0; s < kBlockVectors; ++s) {
+[[gnu::always_inline]] inline void wrap(Block<R>& b, const Boundary& boundary, R width, R height) {
+  {
     for (int l = 0; l < Block<R>::kLanes; ++l) {
-      const R r = boundary.use_radius ? b.r[s][l] : R(0);
+      const R r = boundary.use_radius ? b.r()[l] : R(0);
       if (boundary.edges.left || boundary.edges.right) {
-        b.x[s][l] = calder::detail::wrap_coordinate(R(b.x[s][l]), -r, width + r);
+        b.x[l] = calder::detail::wrap_coordinate(R(b.x[l]), -r, width + r);
       }
       if (boundary.edges.top || boundary.edges.bottom) {
-        b.y[s][l] = calder::detail::wrap_coordinate(R(b.y[s][l]), -r, height + r);
+        b.y[l] = calder::detail::wrap_coordinate(R(b.y[l]), -r, height + r);
       }
     }
   }
 }
 
 template <class R>
-void update(Block<R>& b, const Boundary& boundary, R width, R height, R dt) {
+[[gnu::always_inline]] inline void update(Block<R>& b, const Boundary& boundary, R width, R height,
+                                          R dt) {
   using V = typename Simd<R>::V;
   if (boundary.kind == BoundaryKind::bounce) {
-    if (boundary.use_radius) return update_bounce<R, true>(b, boundary, width, height, dt);
-    return update_bounce<R, false>(b, boundary, width, height, dt);
+    const Walls<R> walls(boundary, width, height);
+    if (boundary.use_radius) return update_bounce<R, true>(b, walls, dt);
+    return update_bounce<R, false>(b, walls, dt);
   }
   const bool wrapping = boundary.kind == BoundaryKind::wrap;
   const bool before = boundary.timing == BoundaryTiming::before_update;
   if (wrapping && before) wrap(b, boundary, width, height);
-  for (int s = 0; s < kBlockVectors; ++s) {
-    calder::detail::kick_drift(b.x[s], b.y[s], b.vx[s], b.vy[s], b.ax[s], b.ay[s], splat<V>(dt));
-  }
+  { calder::detail::kick_drift(b.x, b.y, b.vx, b.vy, b.ax, b.ay, splat<V>(dt)); }
   if (wrapping && !before) wrap(b, boundary, width, height);
 }
 
-template <class R, bool kBook>
-void apply_op(Block<R>& b, const Op& op, const Params<R>& p, int step, R width, R height, R dt) {
+// Hands `each` the force of one op: a function of a Block that adds it to
+// the block's accelerations.
+template <class R, bool kBook, class Each>
+[[gnu::always_inline]] inline void apply_op(Each&& each, const Op& op, const Params<R>& p, int step,
+                                            R width, R height, R dt) {
   switch (op.kind) {
     case OpKind::uniform:
       if (op.per_step != nullptr) {
         const auto si = static_cast<std::size_t>(step);
-        return op_uniform<R, kBook>(b, R(op.per_step[2 * si]), R(op.per_step[2 * si + 1]));
+        const R fx = R(op.per_step[2 * si]);
+        const R fy = R(op.per_step[2 * si + 1]);
+        return each([=](Block<R>& b) CALDER_MOVERS_INLINE { op_uniform<R, kBook>(b, fx, fy); });
       }
-      return op_uniform<R, kBook>(b, p.fx, p.fy);
+      return each([=](Block<R>& b) CALDER_MOVERS_INLINE { op_uniform<R, kBook>(b, p.fx, p.fy); });
     case OpKind::gravity_scaled:
-      return op_gravity_scaled<R, kBook>(b, p.fx, p.fy);
+      return each([=](Block<R>& b)
+                      CALDER_MOVERS_INLINE { op_gravity_scaled<R, kBook>(b, p.fx, p.fy); });
     case OpKind::drag:
-      if (p.never_reverse) return op_drag<R, kBook, true>(b, p, dt);
-      return op_drag<R, kBook, false>(b, p, dt);
+      if (p.never_reverse) {
+        if (op.everywhere)
+          return each([=](Block<R>& b)
+                          CALDER_MOVERS_INLINE { op_drag<R, kBook, true, true>(b, p, dt); });
+        return each([=](Block<R>& b)
+                        CALDER_MOVERS_INLINE { op_drag<R, kBook, true, false>(b, p, dt); });
+      }
+      if (op.everywhere)
+        return each([=](Block<R>& b)
+                        CALDER_MOVERS_INLINE { op_drag<R, kBook, false, true>(b, p, dt); });
+      return each([=](Block<R>& b)
+                      CALDER_MOVERS_INLINE { op_drag<R, kBook, false, false>(b, p, dt); });
     case OpKind::friction:
-      if (p.never_reverse) return op_friction<R, kBook, true>(b, p, width, height, dt);
-      return op_friction<R, kBook, false>(b, p, width, height, dt);
+      if (p.never_reverse)
+        return each([=](Block<R>& b) CALDER_MOVERS_INLINE {
+          op_friction<R, kBook, true>(b, p, width, height, dt);
+        });
+      return each([=](Block<R>& b) CALDER_MOVERS_INLINE {
+        op_friction<R, kBook, false>(b, p, width, height, dt);
+      });
     case OpKind::attractor:
       switch (p.law) {
         case AttractorLaw::clamp_distance:
-          return op_attractor<R, kBook, AttractorLaw::clamp_distance, false>(b, p);
+          return each([=](Block<R>& b) CALDER_MOVERS_INLINE {
+            op_attractor<R, kBook, AttractorLaw::clamp_distance, false>(b, p);
+          });
         case AttractorLaw::clamp_squared:
-          return op_attractor<R, kBook, AttractorLaw::clamp_squared, false>(b, p);
+          return each([=](Block<R>& b) CALDER_MOVERS_INLINE {
+            op_attractor<R, kBook, AttractorLaw::clamp_squared, false>(b, p);
+          });
         case AttractorLaw::plummer:
-          if (p.eps == R(0)) return op_attractor<R, kBook, AttractorLaw::plummer, false>(b, p);
-          return op_attractor<R, kBook, AttractorLaw::plummer, true>(b, p);
+          if (p.eps == R(0))
+            return each([=](Block<R>& b) CALDER_MOVERS_INLINE {
+              op_attractor<R, kBook, AttractorLaw::plummer, false>(b, p);
+            });
+          return each([=](Block<R>& b) CALDER_MOVERS_INLINE {
+            op_attractor<R, kBook, AttractorLaw::plummer, true>(b, p);
+          });
       }
       return;
     case OpKind::edge_force:
-      return op_edge_force<R, kBook>(b, p, width, height);
+      return each([=](Block<R>& b)
+                      CALDER_MOVERS_INLINE { op_edge_force<R, kBook>(b, p, width, height); });
     case OpKind::fan:
-      return op_fan<R, kBook>(b, p);
+      return each([=](Block<R>& b) CALDER_MOVERS_INLINE { op_fan<R, kBook>(b, p); });
     case OpKind::lift:
-      return op_lift<R, kBook>(b, p);
+      return each([=](Block<R>& b) CALDER_MOVERS_INLINE { op_lift<R, kBook>(b, p); });
   }
 }
 
-// Loads bodies [first, first + count) of the tile into a block (lanes past
-// count get a harmless body: unit mass at the origin, at rest), runs every
-// step of the batch on it, and stores the bodies back.
+// The fast kernels fold the ops whose acceleration is the same for every body
+// (gravity scaled by mass) into one constant: true, with it in (gx, gy), for
+// such an op.
 template <class R, bool kBook>
-void advance_block(const Plan& plan, const std::vector<Params<R>>& params, const Tile& tile,
-                   std::size_t first, std::size_t count) {
-  constexpr int lanes = Block<R>::kLanes;
-  Block<R> b;
-  for (int s = 0; s < kBlockVectors; ++s) {
-    for (int l = 0; l < lanes; ++l) {
-      const std::size_t k = static_cast<std::size_t>(s * lanes + l);
-      const bool real = k < count;
-      const std::size_t i = first + (real ? k : 0);
-      b.x[s][l] = real ? R(tile.x[i]) : R(0);
-      b.y[s][l] = real ? R(tile.y[i]) : R(0);
-      b.vx[s][l] = real ? R(tile.vx[i]) : R(0);
-      b.vy[s][l] = real ? R(tile.vy[i]) : R(0);
-      b.ax[s][l] = real ? R(tile.ax[i]) : R(0);
-      b.ay[s][l] = real ? R(tile.ay[i]) : R(0);
-      b.m[s][l] = real ? R(tile.mass[i]) : R(1);
-      b.inv_m[s][l] = real ? R(1.0 / tile.mass[i]) : R(1);
-      b.r[s][l] = real ? R(tile.radius[i]) : R(0);
-      b.area[s][l] = real ? R(tile.drag_area[i]) : R(1);
-      b.mu[s][l] = real ? R(tile.friction[i]) : R(0);
-    }
+[[gnu::always_inline]] inline bool constant_op(const Op& op, const Params<R>& p, R& gx, R& gy) {
+  if constexpr (kBook) return false;
+  if (op.kind == OpKind::gravity_scaled) {
+    gx = p.fx;
+    gy = p.fy;
+    return true;
   }
+  return false;
+}
+
+// Runs every step of the batch over a chunk of `vectors` vectors. A step is
+// one pass over the chunk per op, each adding its force to the accelerations
+// in the chunk, but the last op's pass also runs the update, in registers,
+// and stores only positions and velocities. The accelerations are the tile's
+// on the first step and +0 on the others (the update clears them), so the
+// first pass of a later step doesn't read them. (One pass for every op and
+// the update together would store least, but then every vector goes through
+// the ops' dispatch: slower on AVX2, measured.)
+template <class R, bool kBook>
+void advance_chunk(const Plan& plan, const std::vector<Params<R>>& params, Chunk<R>& chunk,
+                   std::size_t vectors, std::vector<std::size_t>& passes) {
+  using V = typename Simd<R>::V;
   const R width = R(plan.width);
   const R height = R(plan.height);
   const R dt = R(plan.dt);
+  const Boundary boundary = plan.boundary;
+  const Walls<R> walls(boundary, width, height);
   for (int step = 0; step < plan.steps; ++step) {
+    // The fast kernels' constant accelerations, summed; the other ops, in order.
+    R cx = 0;
+    R cy = 0;
+    passes.clear();
     for (std::size_t k = 0; k < plan.ops.size(); ++k) {
-      apply_op<R, kBook>(b, plan.ops[k], params[k], step, width, height, dt);
+      R gx, gy;
+      if (constant_op<R, kBook>(plan.ops[k], params[k], gx, gy)) {
+        cx += gx;
+        cy += gy;
+      } else {
+        passes.push_back(k);
+      }
     }
-    update(b, plan.boundary, width, height, dt);
-  }
-  for (int s = 0; s < kBlockVectors; ++s) {
-    for (int l = 0; l < lanes; ++l) {
-      const std::size_t k = static_cast<std::size_t>(s * lanes + l);
-      if (k >= count) break;
-      const std::size_t i = first + k;
-      tile.x[i] = b.x[s][l];
-      tile.y[i] = b.y[s][l];
-      tile.vx[i] = b.vx[s][l];
-      tile.vy[i] = b.vy[s][l];
-      tile.ax[i] = b.ax[s][l];
-      tile.ay[i] = b.ay[s][l];
+    const V base_x = splat<V>(cx);
+    const V base_y = splat<V>(cy);
+    // Vector v as the first pass of the step sees it.
+    const auto first_load = [&](std::size_t v) CALDER_MOVERS_INLINE {
+      Block<R> b = load_block(chunk, v, step == 0);
+      if constexpr (!kBook) {
+        b.ax += base_x;
+        b.ay += base_y;
+      }
+      return b;
+    };
+    for (std::size_t q = 0; q + 1 < passes.size(); ++q) {
+      const std::size_t k = passes[q];
+      const auto each = [&](auto force) CALDER_MOVERS_INLINE {
+        for (std::size_t v = 0; v < vectors; ++v) {
+          Block<R> b = q == 0 ? first_load(v) : load_block(chunk, v, true);
+          force(b);
+          __builtin_memcpy(chunk.ax + b.at, &b.ax, sizeof(V));
+          __builtin_memcpy(chunk.ay + b.at, &b.ay, sizeof(V));
+        }
+      };
+      apply_op<R, kBook>(each, plan.ops[k], params[k], step, width, height, dt);
+    }
+    // The last pass: the last op, the update, the boundary.
+    const bool alone = passes.size() <= 1;
+    const auto last = [&](auto update_one) CALDER_MOVERS_INLINE {
+      const auto each = [&](auto force) CALDER_MOVERS_INLINE {
+        for (std::size_t v = 0; v < vectors; ++v) {
+          Block<R> b = alone ? first_load(v) : load_block(chunk, v, true);
+          force(b);
+          update_one(b);
+          __builtin_memcpy(chunk.x + b.at, &b.x, sizeof(V));
+          __builtin_memcpy(chunk.y + b.at, &b.y, sizeof(V));
+          __builtin_memcpy(chunk.vx + b.at, &b.vx, sizeof(V));
+          __builtin_memcpy(chunk.vy + b.at, &b.vy, sizeof(V));
+        }
+      };
+      if (passes.empty()) return each([](Block<R>&) CALDER_MOVERS_INLINE {});
+      const std::size_t k = passes.back();
+      apply_op<R, kBook>(each, plan.ops[k], params[k], step, width, height, dt);
+    };
+    if (boundary.kind == BoundaryKind::bounce && boundary.use_radius) {
+      last([=](Block<R>& b) CALDER_MOVERS_INLINE { update_bounce<R, true>(b, walls, dt); });
+    } else {
+      last([&](Block<R>& b) CALDER_MOVERS_INLINE { update(b, boundary, width, height, dt); });
     }
   }
 }
 
 template <class R, bool kBook>
 void advance_tile(const Plan& plan, const Tile& tile) {
+  if (plan.steps <= 0 || tile.n == 0) return;
   // The ops' parameters, converted once per tile.
   thread_local std::vector<Params<R>> params;
   params.clear();
   for (const Op& op : plan.ops) params.emplace_back(op);
-  constexpr auto block = static_cast<std::size_t>(Block<R>::kBodies);
-  for (std::size_t first = 0; first < tile.n; first += block) {
-    advance_block<R, kBook>(plan, params, tile, first, std::min(block, tile.n - first));
+  Chunk<R> chunk;  // on the stack: a thread_local's address costs a call per access here
+  constexpr auto lanes = static_cast<std::size_t>(Block<R>::kLanes);
+  const std::size_t vectors = (tile.n + lanes - 1) / lanes;
+  for (std::size_t i = 0; i < vectors * lanes; ++i) {
+    const bool real = i < tile.n;
+    const std::size_t k = real ? i : 0;
+    chunk.x[i] = real ? R(tile.x[k]) : R(0);
+    chunk.y[i] = real ? R(tile.y[k]) : R(0);
+    chunk.vx[i] = real ? R(tile.vx[k]) : R(0);
+    chunk.vy[i] = real ? R(tile.vy[k]) : R(0);
+    chunk.ax[i] = real ? R(tile.ax[k]) : R(0);
+    chunk.ay[i] = real ? R(tile.ay[k]) : R(0);
+    chunk.m[i] = real ? R(tile.mass[k]) : R(1);
+    chunk.inv_m[i] = real ? R(1.0 / tile.mass[k]) : R(1);
+    chunk.r[i] = real ? R(tile.radius[k]) : R(0);
+    chunk.area[i] = real ? R(tile.drag_area[k]) : R(1);
+    chunk.mu[i] = real ? R(tile.friction[k]) : R(0);
+  }
+  thread_local std::vector<std::size_t> passes;
+  advance_chunk<R, kBook>(plan, params, chunk, vectors, passes);
+  for (std::size_t i = 0; i < tile.n; ++i) {
+    tile.x[i] = chunk.x[i];
+    tile.y[i] = chunk.y[i];
+    tile.vx[i] = chunk.vx[i];
+    tile.vy[i] = chunk.vy[i];
+    tile.ax[i] = 0.0;  // the update clears the accelerations
+    tile.ay[i] = 0.0;
   }
 }
 

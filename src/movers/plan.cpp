@@ -114,6 +114,7 @@ bool compile(const StepBatch& batch, Plan& plan, std::string* why_not) {
             op.kind = OpKind::drag;
             op.c = f.c;
             op.never_reverse = f.never_reverse;
+            op.everywhere = true;
             op.x_min = -kInf;
             op.x_max = kInf;
             op.y_min = -kInf;

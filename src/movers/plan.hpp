@@ -40,6 +40,7 @@ struct Op {
   double normal = 1.0;  // friction
   // drag: strictly inside (x_min, x_max) x (y_min, y_max); +-infinity: everywhere
   double x_min = 0.0, x_max = 0.0, y_min = 0.0, y_max = 0.0;
+  bool everywhere = false;      // drag: no region (Drag), the bounds above are infinite
   bool never_reverse = false;   // drag, friction
   Edge surface = Edge::bottom;  // friction
   double tolerance = 1.0;       // friction

@@ -730,7 +730,8 @@ void BarnesHut::accelerations(std::span<const double> x, std::span<const double>
   // The kernels' inputs: per-node moments and per-body masses in the precision used.
   const detail::FloatFrame frame = detail::float_frame(w.x0 + w.side * 0.5, w.y0 + w.side * 0.5,
                                                        w.side * 0.5, w.max_mass, options.G);
-  const detail::LawParams p = detail::law_params(options, frame);
+  detail::LawParams p = detail::law_params(options, frame);
+  p.float_range = detail::float_range_of(w.side, p.eps2);
   const bool f32 = options.precision == Precision::float32;
   const std::size_t node_count = w.tree.nodes.size();
   const double q_scale = f32 ? frame.scale * frame.scale * frame.mass_scale : 1.0;

@@ -256,7 +256,10 @@ void direct_accelerations(std::span<const double> x, std::span<const double> y,
   std::vector<double> sum_y(n, 0.0);
 
   if (options.precision == Precision::float64) {
-    const detail::LawParams p = detail::law_params(options, detail::FloatFrame{});
+    detail::LawParams p = detail::law_params(options, detail::FloatFrame{});
+    const auto [x0, x1] = std::minmax_element(x.begin(), x.end());
+    const auto [y0, y1] = std::minmax_element(y.begin(), y.end());
+    p.float_range = detail::float_range_of(std::max(*x1 - *x0, *y1 - *y0), p.eps2);
     const detail::Bodies<double> sources{x.data(), y.data(), mass.data(), n};
     const std::size_t block = k.block64;
     const auto blocks = static_cast<std::ptrdiff_t>((n + block - 1) / block);

@@ -159,6 +159,34 @@ template <typename V>
 constexpr int kNewtonSteps = 0;
 #endif
 
+// float64 without AVX-512 has no reciprocal square root estimate, and
+// vsqrtpd + vdivpd (one of each per pair) bound the Plummer sum by the
+// divider, not the FMAs. kFloatEstimate: where set, the Plummer sum of
+// unmasked pairs (eps^2 > 0) takes float's estimate instead (vcvtpd2ps,
+// vrsqrtps, vcvtps2pd: relative error < 1.5 * 2^-12) and three Newton steps
+// (2^-23, 2^-45, then rounding), when every r^2 of the call is in float's
+// normal range (LawParams::float_range). Error against the exact sum:
+// tests/test_nbody.cpp and docs/PERFORMANCE.md (RMS ~1e-15).
+#if defined(__AVX__) && !defined(__AVX512F__)
+constexpr bool kFloatEstimate = true;
+[[gnu::always_inline]] inline VD rsqrt_estimate_via_float(VD v) {
+  return VD(_mm256_cvtps_pd(_mm_rsqrt_ps(_mm256_cvtpd_ps(__m256d(v)))));
+}
+#else
+constexpr bool kFloatEstimate = false;
+[[gnu::always_inline]] inline VD rsqrt_estimate_via_float(VD v) { return v; }  // unused
+#endif
+constexpr int kFloatEstimateSteps = 3;
+
+// 2 / sqrt(r2) from float's estimate (see kFloatEstimate): the last Newton
+// step leaves out its factor 1/2, like rsqrt_scaled.
+[[gnu::always_inline]] inline VD rsqrt_scaled_via_float(VD r2) {
+  VD y = rsqrt_estimate_via_float(r2);
+  const VD half_r2 = r2 * 0.5;
+  for (int step = 1; step < kFloatEstimateSteps; ++step) y = y * (1.5 - half_r2 * (y * y));
+  return y * (3.0 - r2 * (y * y));
+}
+
 // 1 / sqrt(r2) for r2 > 0, to the type's precision. With kNewtonSteps > 0 the
 // result is (approximately) `scale` / sqrt(r2) with scale = 2^(kNewtonSteps'
 // last step): the last Newton step y (3 - r2 y^2) leaves out its factor 1/2,
@@ -184,11 +212,16 @@ template <typename V>
 // The law's weight times the source mass, for one vector of pairs: returns
 // m w(r) with r^2 = dx^2 + dy^2 (see kernels.hpp). Masked: zero where
 // r^2 < kTiny (the same place, to the type's precision).
-template <Law kLaw, bool kMasked, typename V>
+template <Law kLaw, bool kMasked, typename V, bool kViaFloat = false>
 [[gnu::always_inline]] inline V weight(V dx, V dy, V m, V eps2, V lo, V hi) {
   using T = typename Scalar<V>::type;
   V w;
-  if constexpr (kLaw == Law::plummer) {
+  if constexpr (kLaw == Law::plummer && kViaFloat) {
+    V r2 = dx * dx + eps2;
+    r2 = dy * dy + r2;
+    const V y = rsqrt_scaled_via_float(r2);  // 2 / r
+    w = (m * T(0.125)) * y * (y * y);
+  } else if constexpr (kLaw == Law::plummer) {
     V r2 = dx * dx + eps2;
     r2 = dy * dy + r2;
     if constexpr (kNewtonSteps<V> == 0) {
@@ -233,7 +266,7 @@ template <Law kLaw, bool kMasked, typename V>
 
 // Sources, one broadcast at a time: point masses under a law; kSplit:
 // two-float positions (see Bodies).
-template <typename V, Law kLaw, bool kMasked, bool kSplit>
+template <typename V, Law kLaw, bool kMasked, bool kSplit, bool kViaFloat = false>
 struct PointSources {
   using T = typename Scalar<V>::type;
   static constexpr bool kTwoFloat = kSplit;
@@ -260,7 +293,7 @@ struct PointSources {
       dx = dx + (src.x_lo - xi_lo);
       dy = dy + (src.y_lo - yi_lo);
     }
-    const V w = weight<kLaw, kMasked>(dx, dy, src.m, eps2, lo, hi);
+    const V w = weight<kLaw, kMasked, V, kViaFloat>(dx, dy, src.m, eps2, lo, hi);
     ax = w * dx + ax;
     ay = w * dy + ay;
   }
@@ -440,6 +473,12 @@ void accumulate_law(const typename Scalar<V>::type* tx, const typename Scalar<V>
   };
   switch (p.law) {
     case Law::plummer:
+      if constexpr (kFloatEstimate && sizeof(T) == 8) {
+        if (p.float_range) {
+          run(PointSources<V, Law::plummer, false, kSplit, true>{s, e, lo, hi});
+          break;
+        }
+      }
       if (eps2 >= kTiny<V>) {
         run(PointSources<V, Law::plummer, false, kSplit>{s, e, lo, hi});
       } else {

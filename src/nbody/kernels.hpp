@@ -30,10 +30,21 @@ struct LawParams {
   double eps2 = 0.0;  // softening^2 (plummer)
   double lo = 0.0;    // clamp bounds: distance, or squared distance
   double hi = 0.0;
+  // float64, plummer: every pair's r^2 = dx^2 + dy^2 + eps2 lies in float's
+  // normal range, so that kernels without a double estimate may start from
+  // float's (float_range_of).
+  bool float_range = false;
   float eps2_f = 0.0f;
   float lo_f = 0.0f;
   float hi_f = 0.0f;
 };
+
+// Whether r^2 = dx^2 + dy^2 + eps2 lies within 2^-120 .. 2^122, in float's
+// normal range, for every pair of bodies whose coordinates differ by at most
+// `span` (the bounding box's largest side).
+inline bool float_range_of(double span, double eps2) {
+  return eps2 >= 0x1p-120 && eps2 <= 0x1p120 && span < 0x1p60;
+}
 
 template <typename T>
 struct Bodies {
