@@ -22,16 +22,16 @@ void require_finite_vec(Vec2 v, const char* where, const char* what) {
   detail::require_finite(v.y, where, what);
 }
 
-void validate_body(const BodyDef& def, const char* where) {
-  require_finite_vec(def.position, where, "position");
-  require_finite_vec(def.velocity, where, "velocity");
-  detail::require_positive(def.mass, where, "mass");
-  detail::require_non_negative(def.radius, where, "radius");
-  if (def.friction) detail::require_non_negative(*def.friction, where, "friction");
-  detail::require_non_negative(def.drag_area, where, "drag_area");
-}
-
 }  // namespace
+
+void BodyDef::validate(const char* where) const {
+  require_finite_vec(position, where, "position");
+  require_finite_vec(velocity, where, "velocity");
+  detail::require_positive(mass, where, "mass");
+  detail::require_non_negative(radius, where, "radius");
+  if (friction) detail::require_non_negative(*friction, where, "friction");
+  detail::require_non_negative(drag_area, where, "drag_area");
+}
 
 void Boundary::validate(const char* where) const {
   const std::string w = std::string(where) + ": boundary";
@@ -57,7 +57,7 @@ std::size_t World::checked(BodyId id, const char* where) const {
 }
 
 BodyId World::add_body(const BodyDef& def) {
-  validate_body(def, "World::add_body");
+  def.validate("World::add_body");
   if (x_.size() >= UINT32_MAX) throw Error("World::add_body: too many bodies");
   const BodyId id{static_cast<std::uint32_t>(x_.size())};
   x_.push_back(def.position.x);
