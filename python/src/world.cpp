@@ -40,8 +40,10 @@ void without_gil(World& world, const char* where, Function&& f) {
   f();
 }
 
+// An id as C++'s BodyId; the world checks it (an index out of range raises
+// with the C++ message). Numbers no BodyId can hold name no body either.
 BodyId id_of(const World& world, std::int64_t index, const char* where) {
-  if (index < 0 || static_cast<std::uint64_t>(index) >= world.body_count()) {
+  if (index < 0 || index >= std::int64_t{UINT32_MAX}) {
     throw Error(std::string(where) + ": no body with id " + std::to_string(index) +
                 " (the world has " + std::to_string(world.body_count()) + " bodies)");
   }
@@ -231,7 +233,7 @@ void bind_world(py::module_& m) {
            "every body is checked first. friction NaN: the Friction field's mu.\n"
            "Returns the range of their ids.")
       .def(
-          "mover", [](World& w, std::int64_t id) { return Mover(w, id_of(w, id, "World::mover")); },
+          "mover", [](World& w, std::int64_t id) { return w.mover(id_of(w, id, "World::mover")); },
           py::arg("id"), py::keep_alive<0, 1>())
       .def_property_readonly("body_count", &World::body_count)
       .def("__len__", &World::body_count)
