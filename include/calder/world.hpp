@@ -152,6 +152,13 @@ struct BodyDef {
   void validate(const char* where) const;
 };
 
+// Bodies as arrays, for World::add_bodies: each column holds one value per
+// body, or one value for all, or none (BodyDef's default; friction NaN:
+// none of its own).
+struct BodyColumns {
+  std::span<const double> x{}, y{}, vx{}, vy{}, mass{}, radius{}, friction{}, drag_area{};
+};
+
 struct BodyId {
   std::uint32_t index = UINT32_MAX;
   friend bool operator==(BodyId a, BodyId b) { return a.index == b.index; }
@@ -166,6 +173,10 @@ class World {
   // --- bodies ---
   BodyId add_body(const BodyDef& def);
   Mover add_mover(const BodyDef& def);
+  // Adds many bodies from arrays, all or none: each is checked as add_body
+  // checks it (the message names its index) before any is added; the arrays
+  // grow once. Returns the first's id.
+  BodyId add_bodies(const BodyColumns& columns);
   Mover mover(BodyId id);
   [[nodiscard]] std::size_t body_count() const { return x_.size(); }
   [[nodiscard]] BodyId body(std::size_t index) const;  // the id of the index-th body
@@ -259,6 +270,7 @@ class World {
 
  private:
   std::size_t checked(BodyId id, const char* where) const;
+  void append(const BodyDef& def);  // a body already checked
   void save_state();
   void restore_state();
   FieldContext context(const BodyView& view, double time) const;

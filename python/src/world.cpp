@@ -10,6 +10,7 @@
 // its memory. So no view can read freed memory: it is refused, not detected.
 #include <pybind11/stl.h>
 
+#include <algorithm>
 #include <calder/diagnostics.hpp>
 #include <calder/error.hpp>
 #include <calder/world.hpp>
@@ -50,84 +51,75 @@ BodyId id_of(const World& world, std::int64_t index, const char* where) {
   return BodyId{static_cast<std::uint32_t>(index)};
 }
 
-// One column of add_bodies: an array of n values or one value for all.
+// One column of add_bodies or of a bulk setter: a 1-D array, or one number
+// for all bodies; viewed without a copy when it is already float64.
 struct Column {
   py::array_t<double, py::array::c_style | py::array::forcecast> values;
   double scalar = 0.0;
   bool is_array = false;
 
-  Column(const py::handle& given, const char* name, std::size_t& n) {
+  Column(const py::handle& given, const char* where, const char* name) {
     if (py::isinstance<py::float_>(given) || py::isinstance<py::int_>(given)) {
       scalar = given.cast<double>();
       return;
     }
+    is_array = true;
     values = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(given);
     if (!values || values.ndim() != 1) {
-      throw py::type_error(std::string("World.add_bodies: ") + name +
+      throw py::type_error(std::string(where) + ": " + name +
                            " must be a number or a 1-D array of numbers");
     }
-    const auto size = static_cast<std::size_t>(values.shape(0));
-    if (n != SIZE_MAX && size != n) {
-      throw py::value_error(std::string("World.add_bodies: ") + name + " has " +
-                            std::to_string(size) + " values, the arrays before it " +
-                            std::to_string(n));
-    }
-    n = size;
-    is_array = true;
   }
-  double operator[](std::size_t i) const { return is_array ? values.data()[i] : scalar; }
+  [[nodiscard]] std::span<const double> span() const {
+    if (!is_array) return {&scalar, 1};
+    return {values.data(), static_cast<std::size_t>(values.shape(0))};
+  }
 };
 
 py::object add_bodies(World& world, const py::handle& x, const py::handle& y, const py::handle& vx,
                       const py::handle& vy, const py::handle& mass, const py::handle& radius,
                       const py::object& friction, const py::handle& drag_area) {
-  std::size_t n = SIZE_MAX;
-  const Column cx(x, "x", n), cy(y, "y", n), cvx(vx, "vx", n), cvy(vy, "vy", n),
-      cmass(mass, "mass", n), cradius(radius, "radius", n), carea(drag_area, "drag_area", n);
+  const char* where = "World.add_bodies";
+  const Column cx(x, where, "x"), cy(y, where, "y"), cvx(vx, where, "vx"), cvy(vy, where, "vy"),
+      cmass(mass, where, "mass"), cradius(radius, where, "radius"),
+      carea(drag_area, where, "drag_area");
   std::optional<Column> cfriction;
-  if (!friction.is_none()) cfriction.emplace(friction, "friction", n);
-  if (n == SIZE_MAX) n = 1;  // all scalars: one body
-  require_resizable(world, "World.add_bodies", n > 0);
-  const auto def = [&](std::size_t i) {
-    BodyDef d{{cx[i], cy[i]}, {cvx[i], cvy[i]}, cmass[i], cradius[i], std::nullopt, carea[i]};
-    if (cfriction) {
-      const double mu = (*cfriction)[i];
-      if (!std::isnan(mu))
-        d.friction = mu;  // NaN: the Friction field's mu, as world.friction shows
-    }
-    return d;
-  };
-  // All or nothing: every body is checked before any is added.
-  for (std::size_t i = 0; i < n; ++i) {
-    try {
-      def(i).validate("World::add_body");
-    } catch (const Error& e) {
-      throw Error("World.add_bodies: body " + std::to_string(i) + ": " + e.what());
-    }
-  }
-  const std::size_t first = world.body_count();
-  for (std::size_t i = 0; i < n; ++i) world.add_body(def(i));
-  return py::module_::import("builtins").attr("range")(first, first + n);
+  if (!friction.is_none()) cfriction.emplace(friction, where, "friction");
+  require_resizable(world, where, true);
+  const BodyColumns columns{cx.span(),
+                            cy.span(),
+                            cvx.span(),
+                            cvy.span(),
+                            cmass.span(),
+                            cradius.span(),
+                            cfriction ? cfriction->span() : std::span<const double>{},
+                            carea.span()};
+  const std::size_t first = world.add_bodies(columns).index;  // all or nothing
+  return py::module_::import("builtins").attr("range")(first, world.body_count());
 }
 
 // Bulk setters: all values are checked first (by the per-body setter, on
 // the first bad one), then all are set.
 void set_pairs(World& world, const py::handle& a, const py::handle& b, const char* where,
                void (World::*setter)(BodyId, Vec2)) {
-  std::size_t n = world.body_count();
-  const Column ca(a, "first array", n), cb(b, "second array", n);
-  if (n != world.body_count()) {
-    throw py::value_error(std::string(where) + ": got " + std::to_string(n) +
-                          " values for a world of " + std::to_string(world.body_count()) +
-                          " bodies");
+  const Column ca(a, where, "the first array"), cb(b, where, "the second array");
+  const std::span<const double> sa = ca.span(), sb = cb.span();
+  const std::size_t n = world.body_count();
+  for (const std::size_t size : {sa.size(), sb.size()}) {
+    if (size != n && size != 1) {
+      throw py::value_error(std::string(where) + ": got " + std::to_string(size) +
+                            " values for a world of " + std::to_string(n) + " bodies");
+    }
   }
+  const auto value = [&](std::size_t i) {
+    return Vec2{sa[sa.size() == 1 ? 0 : i], sb[sb.size() == 1 ? 0 : i]};
+  };
   for (std::size_t i = 0; i < n; ++i) {
-    const Vec2 v{ca[i], cb[i]};
-    if (!v.is_finite()) (world.*setter)(BodyId{static_cast<std::uint32_t>(i)}, v);  // throws
+    if (!value(i).is_finite())
+      (world.*setter)(BodyId{static_cast<std::uint32_t>(i)}, value(i));  // throws
   }
-  for (std::size_t i = 0; i < n; ++i) {
-    (world.*setter)(BodyId{static_cast<std::uint32_t>(i)}, {ca[i], cb[i]});
-  }
+  for (std::size_t i = 0; i < n; ++i)
+    (world.*setter)(BodyId{static_cast<std::uint32_t>(i)}, value(i));
 }
 
 py::array view(const py::object& self, std::span<const double> BodyView::*column) {

@@ -127,7 +127,7 @@ CASES = [
     (lambda: calder.Simulation("example-2.5").run(-1), ["Simulation.run", "frames"]),
     # Bulk calls: all or nothing, the failing body named
     (lambda: W().add_bodies([0, 1, 2], [0, 0, 0], mass=[1, 0, 1]),
-     ["World.add_bodies: body 1", "World::add_body", "mass"]),
+     ["World::add_bodies: body 1", "World::add_body", "mass"]),
     (lambda: W().set_positions([NAN], [0]), ["World::set_position", "position"]),
 ]
 
