@@ -42,6 +42,15 @@ struct FieldRef {
     return r;
   }
 
+  // Changing a world's field while it steps in another thread (or from a
+  // custom force's function) would race with the step that reads it.
+  void require_changeable() const {
+    if (world != nullptr && state_of(*world).stepping) {
+      throw Error(std::string(field_name(Field{F{}})) +
+                  ": the world is stepping in another thread; change its fields between steps");
+    }
+  }
+
   F& get() const {
     if (world == nullptr) return *own;
     if (state_of(*world).field_generation != generation) {
@@ -108,6 +117,7 @@ void parameter(FieldClass<F>& c, const char* name, T F::*member) {
   c.def_property(
       name, [member](const FieldRef<F>& r) { return r.get().*member; },
       [member](const FieldRef<F>& r, T value) {
+        r.require_changeable();
         F& field = r.get();
         F changed = field;
         changed.*member = std::move(value);
@@ -354,6 +364,7 @@ void bind_fields(py::module_& m) {
   custom.def_property(
       "force", [](const FieldRef<CustomForce>& r) { return r.get().force; },
       [](const FieldRef<CustomForce>& r, const py::function& function) {
+        r.require_changeable();
         r.get().force = wrap_custom_force(function);
       });
 }

@@ -142,6 +142,20 @@ def test_a_custom_force_cannot_grow_or_keep_its_context():
         kept[0].position(0)
 
 
+def test_a_custom_force_cannot_change_fields_while_stepping():
+    world = world_of(1)
+    wind = world.add(calder.Wind())
+
+    def meddle(context, index):
+        wind.enabled = False
+        return (0, 0)
+
+    world.add(calder.CustomForce(force=meddle))
+    with pytest.raises(calder.Error, match="wind: the world is stepping"):
+        world.step()
+    assert wind.enabled and world.step_count == 0
+
+
 def test_step_releases_the_gil():
     world = calder.World()
     world.add(calder.Gravity())
