@@ -13,6 +13,7 @@
 #include <algorithm>
 #include <calder/diagnostics.hpp>
 #include <calder/error.hpp>
+#include <calder/trajectory.hpp>
 #include <calder/world.hpp>
 #include <optional>
 #include <string>
@@ -173,14 +174,23 @@ void bind_world(py::module_& m) {
       .def_readwrite("restitution", &Boundary::restitution)
       .def_readwrite("use_radius", &Boundary::use_radius)
       .def_readwrite("edges", &Boundary::edges)
-      .def_readwrite("timing", &Boundary::timing);
+      .def_readwrite("timing", &Boundary::timing)
+      .def("__repr__", [](const Boundary& b) {
+        const char* kinds[] = {"none", "bounce", "wrap"};
+        return std::string("Boundary(kind=") + kinds[static_cast<int>(b.kind)] +
+               ", restitution=" + format_number(b.restitution) +
+               ", use_radius=" + (b.use_radius ? "True" : "False") + ")";
+      });
 
+  py::class_<Mover> mover(m, "Mover",
+                          "A handle to one body with the book's vocabulary (apply_force, update,\n"
+                          "check_edges, contact_edge). Keeps its world alive.");
   py::class_<World> world(
       m, "World",
       "Bodies with mass in contiguous arrays, the fields acting on them, and a step.\n\n"
       "Bodies are named by integer ids (0, 1, ...); world.mover(id) gives the book's\n"
-      "Mover handle. world.x, world.y, world.vx, world.vy, world.mass, world.radius,\n"
-      "world.friction and world.drag_area are read-only numpy views of the arrays\n"
+      "Mover handle. world.x, world.y, world.vx, world.vy, world.masses, world.radii,\n"
+      "world.frictions and world.drag_areas are read-only numpy views of the arrays\n"
       "(zero copy, live: they show the state after each step). While a view is\n"
       "alive the world cannot gain bodies (calder.Error): delete views before adding.\n"
       "Bad arguments raise calder.Error (a ValueError) with calder's message; a step\n"
@@ -406,10 +416,7 @@ void bind_world(py::module_& m) {
           "live_views", [](const World& w) { return state_of(w).live_views; },
           "How many numpy views of this world's arrays are alive");
 
-  py::class_<Mover>(m, "Mover",
-                    "A handle to one body with the book's vocabulary (apply_force, update,\n"
-                    "check_edges, contact_edge). Keeps its world alive.")
-      .def("apply_force", &Mover::apply_force, py::arg("force"))
+  mover.def("apply_force", &Mover::apply_force, py::arg("force"))
       .def("update", &Mover::update)
       .def("check_edges", py::overload_cast<>(&Mover::check_edges))
       .def("check_edges", py::overload_cast<const Boundary&>(&Mover::check_edges),
