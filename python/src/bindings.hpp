@@ -33,6 +33,21 @@ WorldState& state_of(const World& world);
 // now: views alive (when `grows`) or a step running in another thread.
 void require_resizable(const World& world, const char* where, bool grows);
 
+// Runs f with the GIL released and the world marked as stepping, so that
+// other threads can neither resize the world nor step it meanwhile.
+template <class Function>
+void without_gil(World& world, const char* where, Function&& f) {
+  WorldState& state = state_of(world);
+  require_resizable(world, where, false);  // not already stepping
+  state.stepping = true;
+  struct Done {
+    WorldState& s;
+    ~Done() { s.stepping = false; }
+  } done{state};
+  py::gil_scoped_release release;
+  f();
+}
+
 // A read-only numpy view of one of the world's arrays. Its base keeps `owner`
 // (the Python object that keeps the World alive) and counts as a live view.
 py::array body_view(const py::object& owner, const World& world, std::span<const double> data);

@@ -107,16 +107,9 @@ void bind_scene_render(py::module_& m) {
               throw Error("Simulation.run: frames must be >= 0 (got " + std::to_string(frames) +
                           ")");
             }
-            World& world = s.world();
-            WorldState& state = state_of(world);
-            require_resizable(world, "Simulation.run", false);
-            state.stepping = true;
-            struct Done {
-              WorldState& st;
-              ~Done() { st.stepping = false; }
-            } done{state};
-            py::gil_scoped_release release;
-            for (std::int64_t k = 0; k < frames; ++k) s.step();
+            without_gil(s.world(), "Simulation.run", [&] {
+              for (std::int64_t k = 0; k < frames; ++k) s.step();
+            });
           },
           py::arg("frames"), "frames scripted frames (the GIL is released meanwhile)")
       .def("reset_bodies",

@@ -25,23 +25,6 @@ namespace calder::python {
 
 namespace {
 
-// Runs f with the GIL released and the world marked as stepping, so that
-// other threads can neither resize the world nor step it at the same time.
-template <class Function>
-void without_gil(World& world, const char* where, Function&& f) {
-  WorldState& state = state_of(world);
-  if (state.stepping) {
-    throw Error(std::string(where) + ": the world is already stepping in another thread");
-  }
-  state.stepping = true;
-  struct Done {
-    WorldState& s;
-    ~Done() { s.stepping = false; }
-  } done{state};
-  py::gil_scoped_release release;
-  f();
-}
-
 // An id as C++'s BodyId; the world checks it (an index out of range raises
 // with the C++ message). Numbers no BodyId can hold name no body either.
 BodyId id_of(const World& world, std::int64_t index, const char* where) {
