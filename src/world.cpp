@@ -8,6 +8,7 @@
 #include <cstddef>
 #include <limits>
 #include <string>
+#include <utility>
 
 #include "calder/error.hpp"
 #include "integrate.hpp"
@@ -28,16 +29,16 @@ void require_finite_vec(Vec2 v, const char* where, const char* what) {
   detail::require_finite(v.y, where, what);
 }
 
-void validate_body(const BodyDef& def, const char* where) {
-  require_finite_vec(def.position, where, "position");
-  require_finite_vec(def.velocity, where, "velocity");
-  detail::require_positive(def.mass, where, "mass");
-  detail::require_non_negative(def.radius, where, "radius");
-  if (def.friction) detail::require_non_negative(*def.friction, where, "friction");
-  detail::require_non_negative(def.drag_area, where, "drag_area");
-}
-
 }  // namespace
+
+void BodyDef::validate(const char* where) const {
+  require_finite_vec(position, where, "position");
+  require_finite_vec(velocity, where, "velocity");
+  detail::require_positive(mass, where, "mass");
+  detail::require_non_negative(radius, where, "radius");
+  if (friction) detail::require_non_negative(*friction, where, "friction");
+  detail::require_non_negative(drag_area, where, "drag_area");
+}
 
 void Boundary::validate(const char* where) const {
   const std::string w = std::string(where) + ": boundary";
@@ -65,9 +66,79 @@ std::size_t World::checked(BodyId id, const char* where) const {
 }
 
 BodyId World::add_body(const BodyDef& def) {
-  validate_body(def, "World::add_body");
+  def.validate("World::add_body");
   if (x_.size() >= UINT32_MAX) throw Error("World::add_body: too many bodies");
   const BodyId id{static_cast<std::uint32_t>(x_.size())};
+  append(def);
+  return id;
+}
+
+BodyId World::add_bodies(const BodyColumns& columns) {
+  const std::pair<const char*, std::span<const double>> named[] = {
+      {"x", columns.x},
+      {"y", columns.y},
+      {"vx", columns.vx},
+      {"vy", columns.vy},
+      {"mass", columns.mass},
+      {"radius", columns.radius},
+      {"friction", columns.friction},
+      {"drag_area", columns.drag_area}};
+  std::size_t n = 0;
+  for (const auto& [name, column] : named) n = std::max(n, column.size());
+  for (const auto& [name, column] : named) {
+    if (column.size() > 1 && column.size() != n) {
+      throw Error(std::string("World::add_bodies: ") + name + " has " +
+                  std::to_string(column.size()) + " values, expected " + std::to_string(n) +
+                  ", 1 or none");
+    }
+  }
+  const auto at = [](std::span<const double> column, std::size_t i, double fallback) {
+    return column.empty() ? fallback : column[column.size() == 1 ? 0 : i];
+  };
+  const BodyDef defaults{};
+  for (std::size_t i = 0; i < n; ++i) {
+    const double mu = at(columns.friction, i, kNoFriction);
+    const BodyDef def{{at(columns.x, i, 0.0), at(columns.y, i, 0.0)},
+                      {at(columns.vx, i, 0.0), at(columns.vy, i, 0.0)},
+                      at(columns.mass, i, defaults.mass),
+                      at(columns.radius, i, defaults.radius),
+                      std::isnan(mu) ? std::nullopt : std::optional<double>(mu),
+                      at(columns.drag_area, i, defaults.drag_area)};
+    try {
+      def.validate("World::add_body");
+    } catch (const Error& e) {
+      throw Error("World::add_bodies: body " + std::to_string(i) + ": " + e.what());
+    }
+  }
+  if (n > UINT32_MAX - x_.size()) throw Error("World::add_bodies: too many bodies");
+  const BodyId first{static_cast<std::uint32_t>(x_.size())};
+  const auto extend = [n](std::vector<double>& array, std::span<const double> column,
+                          double fallback) {
+    if (column.size() == n && n > 1) {
+      array.insert(array.end(), column.begin(), column.end());
+    } else {
+      array.insert(array.end(), n, column.empty() ? fallback : column[0]);
+    }
+  };
+  // Room once for the batch, still geometric so that many small batches stay linear.
+  const std::size_t room = std::max(x_.size() + n, 2 * x_.size());
+  for (auto* v : {&x_, &y_, &vx_, &vy_, &ax_, &ay_, &mass_, &radius_, &friction_, &drag_area_}) {
+    v->reserve(room);
+  }
+  extend(x_, columns.x, 0.0);
+  extend(y_, columns.y, 0.0);
+  extend(vx_, columns.vx, 0.0);
+  extend(vy_, columns.vy, 0.0);
+  extend(ax_, {}, 0.0);
+  extend(ay_, {}, 0.0);
+  extend(mass_, columns.mass, defaults.mass);
+  extend(radius_, columns.radius, defaults.radius);
+  extend(friction_, columns.friction, kNoFriction);
+  extend(drag_area_, columns.drag_area, defaults.drag_area);
+  return first;
+}
+
+void World::append(const BodyDef& def) {
   x_.push_back(def.position.x);
   y_.push_back(def.position.y);
   vx_.push_back(def.velocity.x);
@@ -78,7 +149,6 @@ BodyId World::add_body(const BodyDef& def) {
   radius_.push_back(def.radius);
   friction_.push_back(def.friction ? *def.friction : kNoFriction);
   drag_area_.push_back(def.drag_area);
-  return id;
 }
 
 Mover World::add_mover(const BodyDef& def) { return {*this, add_body(def)}; }

@@ -1020,4 +1020,49 @@ TEST(TrajectoryWriter, RowsReadBackToTheExactState) {
   EXPECT_EQ(bits(fields[5]), bits(world.velocity(id).y));
 }
 
+// ------------------------------------------------------ add_bodies ---
+
+TEST(WorldAddBodies, EqualsAddBodyOneByOneWithOneValueForAll) {
+  const std::vector<double> x{1.0, 2.0, 3.0}, y{4.0, 5.0, 6.0}, mass{1.0, 2.0, 3.0};
+  const std::vector<double> friction{0.3, std::numeric_limits<double>::quiet_NaN(), 0.1};
+  const std::vector<double> vy{-1.0};  // one value for all
+  World bulk;
+  bulk.add_body({.position = {9.0, 9.0}});
+  const BodyId first =
+      bulk.add_bodies({.x = x, .y = y, .vy = vy, .mass = mass, .friction = friction});
+  EXPECT_EQ(first.index, 1U);
+  World single;
+  single.add_body({.position = {9.0, 9.0}});
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    single.add_body(
+        {.position = {x[i], y[i]},
+         .velocity = {0.0, -1.0},
+         .mass = mass[i],
+         .friction = std::isnan(friction[i]) ? std::nullopt : std::optional(friction[i])});
+  }
+  ASSERT_EQ(bulk.body_count(), 4U);
+  for (std::size_t i = 0; i < 4; ++i) {
+    const BodyId id = bulk.body(i);
+    EXPECT_EQ(bulk.position(id), single.position(id));
+    EXPECT_EQ(bulk.velocity(id), single.velocity(id));
+    EXPECT_EQ(bulk.mass(id), single.mass(id));
+    EXPECT_EQ(bulk.radius(id), single.radius(id));
+    EXPECT_EQ(bulk.friction(id), single.friction(id));
+    EXPECT_EQ(bulk.drag_area(id), single.drag_area(id));
+  }
+}
+
+TEST(WorldAddBodies, AllOrNoneAndTheBadBodyNamed) {
+  World world;
+  world.add_body({});
+  const std::vector<double> x{0.0, 1.0, 2.0}, mass{1.0, 1.0, -2.0}, short_column{1.0, 2.0};
+  expect_error([&] { world.add_bodies({.x = x, .mass = mass}); },
+               {"World::add_bodies: body 2", "mass"});
+  expect_error([&] { world.add_bodies({.x = x, .y = short_column}); },
+               {"World::add_bodies", "y has 2 values, expected 3"});
+  EXPECT_EQ(world.body_count(), 1U);
+  EXPECT_EQ(world.add_bodies({}).index, 1U);  // nothing to add
+  EXPECT_EQ(world.body_count(), 1U);
+}
+
 }  // namespace

@@ -158,6 +158,17 @@ struct BodyDef {
   // Own friction coefficient (exercise 2.6); unset: the Friction field's mu.
   std::optional<double> friction = std::nullopt;
   double drag_area = 1.0;  // frontal area scaling drag (exercise 2.9)
+
+  // Throws calder::Error naming `where` and the field unless add_body would
+  // accept it (lets a caller check a batch before adding any of it).
+  void validate(const char* where) const;
+};
+
+// Bodies as arrays, for World::add_bodies: each column holds one value per
+// body, or one value for all, or none (BodyDef's default; friction NaN:
+// none of its own).
+struct BodyColumns {
+  std::span<const double> x{}, y{}, vx{}, vy{}, mass{}, radius{}, friction{}, drag_area{};
 };
 
 struct BodyId {
@@ -174,6 +185,10 @@ class World {
   // --- bodies ---
   BodyId add_body(const BodyDef& def);
   Mover add_mover(const BodyDef& def);
+  // Adds many bodies from arrays, all or none: each is checked as add_body
+  // checks it (the message names its index) before any is added; the arrays
+  // grow once. Returns the first's id.
+  BodyId add_bodies(const BodyColumns& columns);
   Mover mover(BodyId id);
   [[nodiscard]] std::size_t body_count() const { return x_.size(); }
   [[nodiscard]] BodyId body(std::size_t index) const;  // the id of the index-th body
@@ -267,6 +282,7 @@ class World {
 
  private:
   std::size_t checked(BodyId id, const char* where) const;
+  void append(const BodyDef& def);  // a body already checked
   void save_state();
   void restore_state();
   FieldContext context(const BodyView& view, double time) const;

@@ -1,0 +1,215 @@
+// SPDX-License-Identifier: MIT
+// Scenes (built-in or from a scene file), Simulation, and drawing with
+// calder::render: a frame as a numpy image, PNG and GIF files.
+#include <pybind11/operators.h>
+#include <pybind11/stl.h>
+
+#include <calder/render.hpp>
+#include <calder/scene.hpp>
+#include <calder/scene_file.hpp>
+#include <cstring>
+#include <filesystem>
+#include <string>
+
+#include "bindings.hpp"
+
+namespace calder::python {
+
+namespace {
+
+// A built-in scene's name, or the path of a scene file (anything with a
+// '/' or ending in .toml); as the calder command decides.
+Scene scene_from(const std::string& name_or_path) {
+  const bool is_file = name_or_path.find('/') != std::string::npos ||
+                       name_or_path.ends_with(".toml") ||
+                       std::filesystem::exists(std::filesystem::path(name_or_path));
+  return is_file ? load_scene_file(name_or_path) : builtin_scene(name_or_path);
+}
+
+py::array_t<std::uint8_t> image_of(const Canvas& canvas) {
+  const std::vector<std::uint8_t> rgba = canvas.rgba();
+  py::array_t<std::uint8_t> image({canvas.pixel_height(), canvas.pixel_width(), 4});
+  std::memcpy(image.mutable_data(), rgba.data(), rgba.size());
+  return image;
+}
+
+}  // namespace
+
+void bind_scene_render(py::module_& m) {
+  py::enum_<PressAction>(m, "PressAction")
+      .value("none", PressAction::none)
+      .value("reset", PressAction::reset)
+      .value("toss", PressAction::toss);
+
+  py::class_<Scene>(m, "Scene",
+                    "A world as data (canvas, bodies, fields, mouse script, look): a built-in\n"
+                    "scene or a scene file (docs/SCENES.md). Simulation runs one.")
+      .def(py::init(&scene_from), py::arg("name_or_path"),
+           "A built-in scene by name (calder.builtin_scenes()) or a scene file's path")
+      .def_static("builtin", &builtin_scene, py::arg("name"))
+      .def_static("load", &load_scene_file, py::arg("path"), "Reads a scene file (TOML)")
+      .def_static("parse", &parse_scene, py::arg("text"), py::arg("source_name") = "<string>",
+                  "Reads a scene file's text")
+      .def("to_toml", &to_toml, "The scene as a scene file's text")
+      .def("validate", &Scene::validate)
+      .def_readwrite("name", &Scene::name)
+      .def_readwrite("description", &Scene::description)
+      .def_readwrite("frames", &Scene::frames)
+      .def_readwrite("origin", &Scene::origin)
+      .def_property(
+          "seed", [](const Scene& s) { return s.world.seed; },
+          [](Scene& s, std::uint32_t seed) { s.world.seed = seed; })
+      .def_property_readonly("width", [](const Scene& s) { return s.world.width; })
+      .def_property_readonly("height", [](const Scene& s) { return s.world.height; })
+      .def_property_readonly("on_press", [](const Scene& s) { return s.on_press; })
+      .def("__repr__", [](const Scene& s) { return "Scene('" + s.name + "')"; });
+
+  m.def(
+      "builtin_scenes",
+      [] {
+        std::vector<std::pair<std::string, std::string>> scenes;
+        for (const SceneInfo& info : builtin_scenes())
+          scenes.emplace_back(info.name, info.description);
+        return scenes;
+      },
+      "The built-in scenes: a list of (name, description)");
+
+  py::class_<Simulation>(m, "Simulation",
+                         "Runs a scene one frame at a time, with its scripted mouse (or yours):\n"
+                         "the same frames, bits and state hash as `calder run`.")
+      .def(py::init([](const py::object& scene, std::optional<std::uint32_t> seed) {
+             if (py::isinstance<py::str>(scene)) {
+               return std::make_unique<Simulation>(scene_from(scene.cast<std::string>()), seed);
+             }
+             return std::make_unique<Simulation>(scene.cast<Scene>(), seed);
+           }),
+           py::arg("scene"), py::arg("seed") = py::none(),
+           "scene: a Scene, a built-in scene's name or a scene file's path; seed replaces "
+           "the scene's")
+      .def(
+          "step",
+          [](Simulation& s, std::optional<bool> mouse_pressed, std::optional<Vec2> mouse) {
+            require_resizable(s.world(), "Simulation.step", false);
+            if (!mouse_pressed && !mouse) {
+              s.step();
+            } else {
+              const std::int64_t next = s.frame() + 1;
+              s.step(InputState{mouse_pressed.value_or(s.scene().input.pressed_at(next)),
+                                mouse.value_or(s.scene().input.mouse_at(next))});
+            }
+          },
+          py::kw_only(), py::arg("mouse_pressed") = py::none(), py::arg("mouse") = py::none(),
+          "One frame; the mouse from the scene's script unless given")
+      .def(
+          "run",
+          [](Simulation& s, std::int64_t frames) {
+            if (frames < 0) {
+              throw Error("Simulation.run: frames must be >= 0 (got " + std::to_string(frames) +
+                          ")");
+            }
+            without_gil(s.world(), "Simulation.run", [&] {
+              for (std::int64_t k = 0; k < frames; ++k) s.step();
+            });
+          },
+          py::arg("frames"), "frames scripted frames (the GIL is released meanwhile)")
+      .def("reset_bodies",
+           [](Simulation& s) {
+             require_resizable(s.world(), "Simulation.reset_bodies", false);
+             s.reset_bodies();
+           })
+      .def_property_readonly(
+          "world", [](Simulation& s) -> World& { return s.world(); },
+          py::return_value_policy::reference_internal)
+      .def_property_readonly("scene", &Simulation::scene)
+      .def_property_readonly("frame", &Simulation::frame);
+
+  // --- drawing ---
+  py::class_<Color>(m, "Color", "RGBA, each in [0, 1]")
+      .def(py::init([](double r, double g, double b, double a) {
+             return Color{r, g, b, a};
+           }),
+           py::arg("r") = 0.0, py::arg("g") = 0.0, py::arg("b") = 0.0, py::arg("a") = 1.0)
+      .def_static("gray", &Color::gray, py::arg("v"), py::arg("alpha") = 255.0,
+                  "p5's fill(v, alpha), 0..255")
+      .def_static("rgb", &Color::rgb, py::arg("r"), py::arg("g"), py::arg("b"),
+                  py::arg("alpha") = 255.0, "p5's fill(r, g, b, alpha), 0..255")
+      .def_readwrite("r", &Color::r)
+      .def_readwrite("g", &Color::g)
+      .def_readwrite("b", &Color::b)
+      .def_readwrite("a", &Color::a)
+      .def(py::self == py::self);
+
+  py::enum_<BookLook>(m, "BookLook")
+      .value("sketch", BookLook::sketch)
+      .value("figure", BookLook::figure);
+
+  py::class_<RenderStyle>(m, "RenderStyle", "How a frame is drawn (colours, trails, overlays)")
+      .def(py::init<>())
+      .def_readwrite("background", &RenderStyle::background)
+      .def_readwrite("trails", &RenderStyle::trails)
+      .def_readwrite("trail_alpha", &RenderStyle::trail_alpha)
+      .def_readwrite("body_fill", &RenderStyle::body_fill)
+      .def_readwrite("body_stroke", &RenderStyle::body_stroke)
+      .def_readwrite("body_stroke_weight", &RenderStyle::body_stroke_weight)
+      .def_readwrite("squares", &RenderStyle::squares)
+      .def_readwrite("liquid_fill", &RenderStyle::liquid_fill)
+      .def_readwrite("attractor_fill", &RenderStyle::attractor_fill)
+      .def_readwrite("show_forces", &RenderStyle::show_forces)
+      .def_readwrite("show_velocity", &RenderStyle::show_velocity)
+      .def_readwrite("show_hud", &RenderStyle::show_hud)
+      .def_readwrite("force_scale", &RenderStyle::force_scale)
+      .def_readwrite("velocity_scale", &RenderStyle::velocity_scale)
+      .def("validate", &RenderStyle::validate);
+  m.def("book_style", &book_style, py::arg("scene"), py::arg("look") = BookLook::sketch,
+        "The scene's look as the book's sketch (or figure) draws it");
+
+  py::class_<Canvas>(m, "Canvas", "An image to draw worlds on (Cairo): canvas pixels times scale.")
+      .def(py::init<int, int, double>(), py::arg("width"), py::arg("height"),
+           py::arg("scale") = 1.0)
+      .def(
+          "draw",
+          [](Canvas& c, const Simulation& s, const std::optional<RenderStyle>& style) {
+            c.draw(s.world(), s.scene(), style ? *style : book_style(s.scene()), s.frame());
+          },
+          py::arg("simulation"), py::arg("style") = py::none(),
+          "Draws the simulation's world, fields and all, in the scene's look unless style")
+      .def(
+          "draw_world",
+          [](Canvas& c, const World& w, const std::optional<RenderStyle>& style, std::int64_t frame,
+             Vec2 origin) { c.draw(w, style ? *style : RenderStyle{}, frame, origin); },
+          py::arg("world"), py::arg("style") = py::none(), py::arg("frame") = 0,
+          py::arg("origin") = Vec2{})
+      .def("clear", &Canvas::clear)
+      .def_property_readonly("width", &Canvas::width)
+      .def_property_readonly("height", &Canvas::height)
+      .def_property_readonly("scale", &Canvas::scale)
+      .def_property_readonly("pixel_width", &Canvas::pixel_width)
+      .def_property_readonly("pixel_height", &Canvas::pixel_height)
+      .def("image", &image_of,
+           "The image as a new numpy array (pixel_height, pixel_width, 4) of uint8 RGBA")
+      .def(
+          "encode_png",
+          [](const Canvas& c) {
+            const std::vector<unsigned char> png = c.encode_png();
+            return py::bytes(reinterpret_cast<const char*>(png.data()), png.size());
+          },
+          "The image as PNG bytes")
+      .def("write_png", &Canvas::write_png, py::arg("path"));
+
+  py::class_<GifWriter>(m, "GifWriter",
+                        "An animated GIF written frame by frame (a context manager: finishes on "
+                        "exit)")
+      .def(py::init<const std::string&, int, int, double>(), py::arg("path"), py::arg("width"),
+           py::arg("height"), py::arg("fps") = 30.0)
+      .def("add_frame", &GifWriter::add_frame, py::arg("canvas"))
+      .def("finish", &GifWriter::finish)
+      .def_property_readonly("frame_count", &GifWriter::frame_count)
+      .def_property_readonly("path", &GifWriter::path)
+      .def("__enter__", [](py::object self) { return self; })
+      .def("__exit__",
+           [](GifWriter& g, const py::object& type, const py::object&, const py::object&) {
+             if (type.is_none()) g.finish();
+           });
+}
+
+}  // namespace calder::python
