@@ -5,8 +5,10 @@
 // argument and the offending value. Nothing is ever turned into NaN silently.
 #pragma once
 
+#include <cstddef>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 
 namespace calder {
 
@@ -25,6 +27,10 @@ void require_positive(double value, const char* where, const char* what);
 void require_non_negative(double value, const char* where, const char* what);
 // Formats a double the way the messages show it (shortest round-trip form).
 std::string format_number(double value);
+// Text from input, fit for a one-line message: control characters (and DEL)
+// shown as \n, \t, \r or \xNN, and cut after max_bytes bytes with "..."
+// (never inside a UTF-8 sequence).
+std::string printable(std::string_view text, std::size_t max_bytes = 60);
 
 }  // namespace detail
 }  // namespace calder

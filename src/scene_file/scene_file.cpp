@@ -4,7 +4,10 @@
 // value; this file walks the document, checks every key against the keys its
 // table may hold, converts every value with its location at hand, and so
 // reports each problem as "FILE:LINE:COLUMN: problem".
+#include <fcntl.h>
+#include <sys/stat.h>
 #include <toml++/toml.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <array>
@@ -32,6 +35,7 @@
 #include "calder/scene_file.hpp"
 #include "calder/trajectory.hpp"
 #include "names.hpp"
+#include "text_check.hpp"
 
 namespace calder {
 
@@ -82,6 +86,11 @@ std::string lower(std::string_view s) {
 // The candidate closest to word when it is close enough to be a likely typo
 // (differs only in case, or by one edit in a short word, two in a longer one).
 std::optional<std::string_view> nearest(std::string_view word, const Keys& candidates) {
+  // A word much longer than every candidate is no typo of one; this also
+  // bounds the distance tables' cost whatever the input.
+  std::size_t longest = 0;
+  for (const std::string_view c : candidates) longest = std::max(longest, c.size());
+  if (word.size() > longest + 2) return std::nullopt;
   const std::string word_lower = lower(word);
   std::optional<std::string_view> best;
   std::size_t best_distance = std::numeric_limits<std::size_t>::max();
@@ -113,7 +122,9 @@ Keys names(const std::array<Choice<E>, N>& choices) {
   return out;
 }
 
-std::string quote(std::string_view s) { return cat("'", s, "'"); }
+// Input shown in a message: control characters escaped, cut to a readable length.
+std::string quote(std::string_view s) { return cat("'", detail::printable(s), "'"); }
+std::string shown(std::string_view path) { return detail::printable(path, 240); }
 
 const char* type_name(const toml::node& n) {
   switch (n.type()) {
@@ -212,7 +223,7 @@ class Reader {
 
   [[noreturn]] void fail(const toml::source_position& at, const std::string& problem) const {
     const toml::source_position where = at ? at : toml::source_position{1, 1};
-    throw SceneFileError(one_line(cat(source_, ":", std::to_string(where.line), ":",
+    throw SceneFileError(one_line(cat(shown(source_), ":", std::to_string(where.line), ":",
                                       std::to_string(where.column), ": ", problem)));
   }
   [[noreturn]] void fail(const toml::node& n, const std::string& problem) const {
@@ -886,22 +897,42 @@ void Reader::validate(const Scene& scene) const {
 }
 
 std::string read_file(const std::string& path) {
-  std::FILE* file = std::fopen(path.c_str(), "rb");
   const auto cannot_read = [&](int error) {
-    return SceneFileError(one_line(
-        path + ": cannot read: " + std::error_code(error, std::generic_category()).message()));
+    return SceneFileError(one_line(shown(path) + ": cannot read: " +
+                                   std::error_code(error, std::generic_category()).message()));
   };
-  if (file == nullptr) throw cannot_read(errno);
+  // O_NONBLOCK: opening a FIFO must not wait for a writer (it is refused below).
+  const int fd = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC);
+  if (fd < 0) throw cannot_read(errno);
+  struct FdCloser {
+    int fd;
+    ~FdCloser() { ::close(fd); }
+  } closer{fd};
+  struct stat info {};
+  if (::fstat(fd, &info) != 0) throw cannot_read(errno);
+  if (!S_ISREG(info.st_mode)) {
+    throw SceneFileError(shown(path) +
+                         ": not a regular file (scene files are read whole; "
+                         "a device, FIFO or socket is refused)");
+  }
+  const auto too_big = [&] {
+    return SceneFileError(cat(shown(path), ": larger than ",
+                              std::to_string(scene_file_detail::kMaxFileBytes >> 20),
+                              " MiB, the limit of scene files"));
+  };
+  if (static_cast<std::uint64_t>(info.st_size) > scene_file_detail::kMaxFileBytes) throw too_big();
   std::string text;
   std::array<char, 65536> buffer{};
   while (true) {
-    const std::size_t n = std::fread(buffer.data(), 1, buffer.size(), file);
-    text.append(buffer.data(), n);
-    if (n < buffer.size()) break;
+    const ssize_t n = ::read(fd, buffer.data(), buffer.size());
+    if (n < 0) {
+      if (errno == EINTR) continue;
+      throw cannot_read(errno);
+    }
+    if (n == 0) break;
+    text.append(buffer.data(), static_cast<std::size_t>(n));
+    if (text.size() > scene_file_detail::kMaxFileBytes) throw too_big();  // it grew meanwhile
   }
-  const int error = std::ferror(file) == 0 ? 0 : (errno != 0 ? errno : EIO);
-  std::fclose(file);
-  if (error != 0) throw cannot_read(error);
   return text;
 }
 
@@ -909,6 +940,16 @@ std::string read_file(const std::string& path) {
 
 Scene parse_scene(std::string_view text, const std::string& source_name) {
   Reader reader(source_name);
+  if (text.size() > scene_file_detail::kMaxFileBytes) {
+    reader.fail(toml::source_position{1, 1},
+                cat("larger than ", std::to_string(scene_file_detail::kMaxFileBytes >> 20),
+                    " MiB, the limit of scene files"));
+  }
+  if (const auto problem = scene_file_detail::check_text(text)) {
+    reader.fail(toml::source_position{static_cast<toml::source_index>(problem->line),
+                                      static_cast<toml::source_index>(problem->column)},
+                problem->what);
+  }
   toml::table root;
   try {
     root = toml::parse(text, std::string_view(source_name));
