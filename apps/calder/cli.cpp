@@ -79,7 +79,7 @@ int main(int argc, const char* const* argv, std::ostream& out, std::ostream& err
     }
 
     if (run->parsed()) {
-      run_command(run_options, out);
+      run_command(run_options, out, err);
     } else if (render->parsed()) {
       render_command(render_options, out, err);
     } else if (window->parsed()) {
