@@ -5,6 +5,8 @@
 #include <new>
 #include <sstream>
 #include <string>
+#include <string_view>
+#include <vector>
 
 #include "bench_command.hpp"
 #include "calder/error.hpp"
@@ -25,12 +27,15 @@ std::string one_line(std::string message) {
     if (c == '\n' || c == '\r') c = ' ';
   }
   while (!message.empty() && message.back() == ' ') message.pop_back();
-  return message;
+  // Whatever reached the message: no control characters reach the terminal.
+  return detail::printable(message, 1000);
 }
 
 namespace {
 
-int report(std::ostream& err, const std::string& message, int code) {
+int report(std::ostream& err, std::string message, int code) {
+  // One "calder: " prefix, however the message was put together.
+  while (message.rfind("calder: ", 0) == 0) message.erase(0, 8);
   err << "calder: " << one_line(message) << '\n';
   err.flush();
   return code;
@@ -64,6 +69,8 @@ int main(int argc, const char* const* argv, std::ostream& out, std::ostream& err
         // --help, --help-all, --version: to `out`, exit 0.
         std::ostringstream help_err;
         app.exit(e, out, help_err);
+        out.flush();
+        if (!out) return report(err, "standard output: write failed", exit_failure);
         return exit_success;
       }
       std::string hint = "see 'calder --help'";
@@ -74,6 +81,16 @@ int main(int argc, const char* const* argv, std::ostream& out, std::ostream& err
       std::string what = e.what();
       if (dynamic_cast<const CLI::RequiredError*>(&e) != nullptr && argc <= 1) {
         what = "a command is required: list, run, render, window or bench";
+      }
+      const bool no_command = !run->parsed() && !render->parsed() && !window->parsed() &&
+                              !bench->parsed() && !app.get_subcommand("list")->parsed();
+      if (no_command && argc > 1 && argv[1][0] != '-') {
+        const std::vector<std::string_view> commands = {"list", "run", "render", "window", "bench"};
+        what = "unknown command '" + detail::printable(argv[1]) + "'";
+        if (const auto near = detail::closest(argv[1], commands)) {
+          what += " (did you mean '" + std::string(*near) + "'?)";
+        }
+        what += "; the commands are list, run, render, window and bench";
       }
       return report(err, what + " (" + hint + ")", exit_usage);
     }

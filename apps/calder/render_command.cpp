@@ -366,7 +366,7 @@ void render_command(const RenderOptions& options, std::ostream& out, std::ostrea
   std::optional<PngFolder> png;
   if (options.png) png.emplace(*options.png);
 
-  Progress progress(err, "render " + input.scene.name, frames,
+  Progress progress(err, "render " + detail::printable(input.scene.name), frames,
                     !options.quiet && stderr_is_terminal());
   std::int64_t index = 0;
   const auto emit = [&]() {

@@ -6,9 +6,11 @@
 #pragma once
 
 #include <cstddef>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace calder {
 
@@ -31,6 +33,11 @@ std::string format_number(double value);
 // shown as \n, \t, \r or \xNN, and cut after max_bytes bytes with "..."
 // (never inside a UTF-8 sequence).
 std::string printable(std::string_view text, std::size_t max_bytes = 60);
+// The candidate closest to `word` when it is close enough to be a likely typo
+// (differs only in case, or by one edit in a short word, two in a longer
+// one); cost bounded by the candidates' lengths, whatever the word.
+std::optional<std::string_view> closest(std::string_view word,
+                                        const std::vector<std::string_view>& candidates);
 
 }  // namespace detail
 }  // namespace calder

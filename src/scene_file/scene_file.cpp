@@ -60,50 +60,10 @@ using Keys = std::vector<std::string_view>;
 
 // --- words for messages ---------------------------------------------------------
 
-// Optimal string alignment distance (Levenshtein plus adjacent transpositions).
-std::size_t edit_distance(std::string_view a, std::string_view b) {
-  std::vector<std::vector<std::size_t>> d(a.size() + 1, std::vector<std::size_t>(b.size() + 1));
-  for (std::size_t i = 0; i <= a.size(); ++i) d[i][0] = i;
-  for (std::size_t j = 0; j <= b.size(); ++j) d[0][j] = j;
-  for (std::size_t i = 1; i <= a.size(); ++i) {
-    for (std::size_t j = 1; j <= b.size(); ++j) {
-      const std::size_t cost = a[i - 1] == b[j - 1] ? 0 : 1;
-      d[i][j] = std::min({d[i - 1][j] + 1, d[i][j - 1] + 1, d[i - 1][j - 1] + cost});
-      if (i > 1 && j > 1 && a[i - 1] == b[j - 2] && a[i - 2] == b[j - 1]) {
-        d[i][j] = std::min(d[i][j], d[i - 2][j - 2] + 1);
-      }
-    }
-  }
-  return d[a.size()][b.size()];
-}
-
-std::string lower(std::string_view s) {
-  std::string out(s);
-  for (char& c : out) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return out;
-}
-
 // The candidate closest to word when it is close enough to be a likely typo
-// (differs only in case, or by one edit in a short word, two in a longer one).
+// (see calder::detail::closest).
 std::optional<std::string_view> nearest(std::string_view word, const Keys& candidates) {
-  // A word much longer than every candidate is no typo of one; this also
-  // bounds the distance tables' cost whatever the input.
-  std::size_t longest = 0;
-  for (const std::string_view c : candidates) longest = std::max(longest, c.size());
-  if (word.size() > longest + 2) return std::nullopt;
-  const std::string word_lower = lower(word);
-  std::optional<std::string_view> best;
-  std::size_t best_distance = std::numeric_limits<std::size_t>::max();
-  for (const std::string_view c : candidates) {
-    const std::size_t d = lower(c) == word_lower ? 0 : edit_distance(word_lower, lower(c));
-    if (d < best_distance) {
-      best_distance = d;
-      best = c;
-    }
-  }
-  const std::size_t limit = word.size() <= 3 ? 1 : 2;
-  if (best && best_distance <= limit && best_distance < word.size()) return best;
-  return std::nullopt;
+  return detail::closest(word, candidates);
 }
 
 std::string join(const Keys& words) {
@@ -170,6 +130,11 @@ enum class Check { any, positive, non_negative };
 const Keys kFieldTypes = {"gravity", "wind",       "noise_wind", "helium",
                           "fan",     "edge_force", "friction",   "liquid",
                           "drag",    "lift",       "attractor",  "mutual_attraction"};
+
+// The keys of the top level, in the order docs/SCENES.md lists them.
+const Keys kTopLevelKeys = {"name",     "description", "frames", "seed",     "origin",
+                            "on_press", "canvas",      "world",  "boundary", "bodies",
+                            "fields",   "input",       "look"};
 
 // --- the reader -------------------------------------------------------------------
 
@@ -388,6 +353,15 @@ void Tbl::allow(const Keys& keys) const {
   } else {
     m += cat(" (valid keys: ", join(keys), ")");
   }
+  const bool top_level_key =
+      std::find(kTopLevelKeys.begin(), kTopLevelKeys.end(), first->str()) != kTopLevelKeys.end();
+  if (top_level_key && t_->source().begin.line < first->source().begin.line) {
+    // TOML's rule that surprises: every key after a [table] or [[table]]
+    // header belongs to that table, up to the next header.
+    m += cat("; '", first->str(),
+             "' is a top-level key, but keys after a table header belong to "
+             "that table: write it above the first [table] or [[table]] header");
+  }
   r_->fail(first->source().begin, m);
 }
 
@@ -435,8 +409,7 @@ const toml::array* Tbl::array(std::string_view key) const {
 
 Scene Reader::scene(const toml::table& root) {
   const Tbl top(*this, root, "the top level");
-  top.allow({"name", "description", "frames", "seed", "origin", "on_press", "canvas", "world",
-             "boundary", "bodies", "fields", "input", "look"});
+  top.allow(kTopLevelKeys);
   Scene s;
   s.name = top.string("name", std::filesystem::path(source_).stem().string());
   s.description = top.string("description", "");
