@@ -160,7 +160,9 @@ inline std::optional<TextProblem> check_text(std::string_view text) {
               after_escape_newline = true;
             }
           }
-          i += 2;  // the escaped character is ASCII (checked above)
+          // The escaped character is ASCII (checked above); a line break
+          // stays to be counted.
+          i += i + 1 < text.size() && text[i + 1] == '\n' ? std::size_t{1} : std::size_t{2};
           continue;
         }
         if (in == In::ml_basic && starts(i, "\"\"\"")) {
