@@ -5,7 +5,7 @@
 //   - a regular file, or nothing yet: the data goes to a temporary file
 //     (".<name>.tmp-XXXXXX") in the same folder, which commit() flushes to
 //     disk and renames over the path. An existing file keeps its mode (and
-//     owner where allowed); a new one gets 0666 less the umask. Destroyed
+//     owner where allowed); a new one gets 0644, whatever the umask. Destroyed
 //     without commit(), it removes the temporary: the path is untouched.
 //   - a symbolic link: followed; its final target is written as above (the
 //     link stays a link).

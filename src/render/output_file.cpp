@@ -53,12 +53,6 @@ std::string follow_links(std::string path, int& error) {
 
 bool is_under(const std::string& path, const char* prefix) { return path.rfind(prefix, 0) == 0; }
 
-mode_t new_file_mode() {
-  const mode_t mask = ::umask(0);
-  ::umask(mask);
-  return 0666 & ~mask;
-}
-
 }  // namespace
 
 OutputFile::OutputFile(std::string who, std::string path)
@@ -94,8 +88,8 @@ OutputFile::OutputFile(std::string who, std::string path)
   if (fd_ < 0) fail("create a file for", errno);
   temp_path_ = buffer.data();
   // mkstemp creates 0600: an existing file keeps its mode (and owner, where
-  // allowed), a new one gets 0666 less the umask, as open() would give it.
-  const mode_t mode = exists ? (info.st_mode & 07777) : new_file_mode();
+  // allowed), a new one gets 0644 whatever the umask (as calder always did).
+  const mode_t mode = exists ? (info.st_mode & 07777) : mode_t{0644};
   if (exists) (void)!::fchown(fd_, info.st_uid, info.st_gid);
   if (::fchmod(fd_, mode) != 0) {
     error = errno;

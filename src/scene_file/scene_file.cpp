@@ -883,6 +883,7 @@ std::string read_file(const std::string& path) {
   } closer{fd};
   struct stat info {};
   if (::fstat(fd, &info) != 0) throw cannot_read(errno);
+  if (S_ISDIR(info.st_mode)) throw cannot_read(EISDIR);
   if (!S_ISREG(info.st_mode)) {
     throw SceneFileError(shown(path) +
                          ": not a regular file (scene files are read whole; "

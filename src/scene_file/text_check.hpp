@@ -200,7 +200,14 @@ inline std::optional<TextProblem> check_text(std::string_view text) {
         if (in_key) {
           if (c == '.') ++key_parts;
           const bool key_ends = in_header ? c == ']' : c == '=';
-          if (i - key_start > kMaxKeyBytes) {
+          // The key's bytes so far: through this character, or up to the
+          // '=' or ']' without the spaces before it (a quoted key included).
+          std::size_t key_end = key_ends ? i : i + 1;
+          while (key_ends && key_end > key_start &&
+                 (text[key_end - 1] == ' ' || text[key_end - 1] == '\t')) {
+            --key_end;
+          }
+          if (key_end - key_start > kMaxKeyBytes) {
             return problem(key_start, "a key longer than " + std::to_string(kMaxKeyBytes) +
                                           " bytes (the limit of scene files)");
           }
