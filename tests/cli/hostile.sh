@@ -64,6 +64,25 @@ run_measured() {
 
 rows_csv='x,y,vx,vy,mass'
 
+# signal_midway SIGNAL PATTERN ARGS...: starts calder ARGS with SIGNAL's
+# default action (a background job of a script ignores SIGINT and SIGQUIT),
+# waits until a file matching PATTERN (a find -path pattern) exists, sends
+# SIGNAL and sets rc to calder's exit status.
+signal_midway() {
+  local signal=$1 pattern=$2 pid
+  shift 2
+  env --default-signal="$signal" "$calder" "$@" > /dev/null 2> err < /dev/null &
+  pid=$!
+  for _ in $(seq 100); do
+    [ -n "$(find . -path "$pattern")" ] && break
+    sleep 0.1
+  done
+  kill -s "$signal" "$pid"
+  wait "$pid"
+  rc=$?
+  [ "$rc" = $((128 + $(kill -l "$signal"))) ] || fail "SIG$signal: exit $rc"
+}
+
 case "$case_name" in
   # --- a crash on a small file ---------------------------------------------------
   deep_dotted_key)
@@ -207,17 +226,7 @@ case "$case_name" in
   signals_run)
     for signal in HUP QUIT PIPE XFSZ ALRM USR1 USR2 INT TERM; do
       rm -f out.csv
-      env --default-signal="$signal" "$calder" run exercise-2.16 --frames 400000 --trajectory out.csv \
-        > /dev/null 2> err < /dev/null &
-      pid=$!
-      for _ in $(seq 50); do  # until the temporary exists
-        [ -n "$(find . -name '.out.csv.tmp-*')" ] && break
-        sleep 0.1
-      done
-      kill -s "$signal" "$pid"
-      wait "$pid"
-      rc=$?
-      [ "$rc" = $((128 + $(kill -l "$signal"))) ] || fail "SIG$signal: exit $rc"
+      signal_midway "$signal" './.out.csv.tmp-*' run exercise-2.16 --frames 400000 --trajectory out.csv
       [ ! -e out.csv ] || fail "SIG$signal: out.csv exists"
       expect_no_temporaries
     done
@@ -226,17 +235,7 @@ case "$case_name" in
     "$calder" render example-2.1 --frames 3 --png frames -q || fail "first render failed"
     before=$(md5sum frames/* | md5sum)
     for signal in HUP QUIT PIPE TERM; do
-      env --default-signal="$signal" "$calder" render example-2.2 --frames 9000 --png frames -q \
-        > /dev/null 2> err < /dev/null &
-      pid=$!
-      for _ in $(seq 50); do
-        [ -n "$(find frames -name 'frame-*.png' -path '*calder-frames*')" ] && break
-        sleep 0.1
-      done
-      kill -s "$signal" "$pid"
-      wait "$pid"
-      rc=$?
-      [ "$rc" = $((128 + $(kill -l "$signal"))) ] || fail "SIG$signal: exit $rc"
+      signal_midway "$signal" './frames/.calder-frames.*/frame-*.png' render example-2.2 --frames 9000 --png frames -q
       [ "$(md5sum frames/* | md5sum)" = "$before" ] || fail "SIG$signal: the earlier frames changed"
       expect_no_temporaries frames
     done
