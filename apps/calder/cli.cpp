@@ -1,6 +1,7 @@
 #include "cli.hpp"
 
 #include <CLI/CLI.hpp>
+#include <csignal>
 #include <exception>
 #include <new>
 #include <sstream>
@@ -114,6 +115,8 @@ int main(int argc, const char* const* argv, std::ostream& out, std::ostream& err
   } catch (const Error& e) {  // calder::SceneFileError and other bad input
     return report(err, e.what(), exit_usage);
   } catch (const Interrupted& e) {
+    // The reader of a pipe went away (`calder run ... | head`): nothing to report.
+    if (e.signal_number() == SIGPIPE) return e.exit_code();
     return report(err, e.what(), e.exit_code());
   } catch (const RunError& e) {
     return report(err, e.what(), exit_failure);

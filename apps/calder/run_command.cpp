@@ -30,8 +30,8 @@ void write_run(Simulation& simulation, const PreparedInput& input, Writer& write
   file.check_stream(stream);
   run_frames(simulation, input.scene.frames, input.source, [&](std::int64_t frame) {
     writer.write(frame, simulation.world());
+    after_frame(frame);         // a signal first: SIGPIPE also fails the write
     file.check_stream(stream);  // the first failed write stops the run
-    after_frame(frame);
   });
 }
 
