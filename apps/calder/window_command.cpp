@@ -23,6 +23,7 @@
 #include "calder/world.hpp"
 #include "errors.hpp"
 #include "parse.hpp"
+#include "progress.hpp"
 
 namespace calder::app {
 
@@ -117,7 +118,9 @@ class WindowApp {
     if (options.screenshot) check_output_path("--screenshot", *options.screenshot);
   }
 
-  void run();
+  // Until q, Escape, the window's close, --frames or --exit-after-seconds;
+  // a terminating signal stops it at the next frame (Interrupted).
+  void run(const InterruptGuard& interrupt);
 
  private:
   void open();
@@ -263,7 +266,7 @@ void WindowApp::update_title() {
   }
 }
 
-void WindowApp::run() {
+void WindowApp::run(const InterruptGuard& interrupt) {
   open();
   draw();
   const double frequency = static_cast<double>(SDL_GetPerformanceFrequency());
@@ -271,6 +274,7 @@ void WindowApp::run() {
   Uint64 last = start;
   if (at_frame_limit()) running_ = false;
   while (running_) {
+    interrupt.check();  // the recording's temporary goes with the destructors
     SDL_Event event;
     while (SDL_PollEvent(&event) != 0) handle(event);
     const Uint64 now = SDL_GetPerformanceCounter();
@@ -589,8 +593,11 @@ void window_command(const WindowOptions& options, std::ostream& out, std::ostrea
   if (options.exit_after_seconds) (void)parse_seconds(*options.exit_after_seconds);
   if (options.screenshot) check_output_path("--screenshot", *options.screenshot);
   const PreparedInput input = prepare_input(options.input);
+  // Installed before SDL starts, SDL leaves SIGINT and SIGTERM to it: every
+  // terminating signal ends the window with exit 128 + signal, cleaned up.
+  const InterruptGuard interrupt;
   WindowApp app(options, input, out, err);
-  app.run();
+  app.run(interrupt);
 }
 
 }  // namespace calder::app

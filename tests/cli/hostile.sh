@@ -240,6 +240,20 @@ case "$case_name" in
       expect_no_temporaries frames
     done
     ;;
+  signals_window)
+    # Under SDL's dummy driver, which needs no display: each signal ends the
+    # window with 128 + N (SDL would have turned SIGINT into a normal quit).
+    export SDL_VIDEODRIVER=dummy
+    for signal in HUP INT TERM USR1; do
+      env --default-signal="$signal" "$calder" window example-2.1 -q > /dev/null 2> err < /dev/null &
+      pid=$!
+      sleep 1
+      kill -s "$signal" "$pid"
+      wait "$pid"
+      rc=$?
+      [ "$rc" = $((128 + $(kill -l "$signal"))) ] || fail "SIG$signal: exit $rc"
+    done
+    ;;
   rerender_failed)
     "$calder" render example-2.1 --frames 3 --png frames -q || fail "first render failed"
     before=$(md5sum frames/* | md5sum)
