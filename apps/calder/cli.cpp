@@ -2,10 +2,13 @@
 #include "cli.hpp"
 
 #include <CLI/CLI.hpp>
+#include <csignal>
 #include <exception>
 #include <new>
 #include <sstream>
 #include <string>
+#include <string_view>
+#include <vector>
 
 #include "calder/error.hpp"
 #include "errors.hpp"
@@ -25,12 +28,15 @@ std::string one_line(std::string message) {
     if (c == '\n' || c == '\r') c = ' ';
   }
   while (!message.empty() && message.back() == ' ') message.pop_back();
-  return message;
+  // Whatever reached the message: no control characters reach the terminal.
+  return detail::printable(message, 1000);
 }
 
 namespace {
 
-int report(std::ostream& err, const std::string& message, int code) {
+int report(std::ostream& err, std::string message, int code) {
+  // One "calder: " prefix, however the message was put together.
+  while (message.rfind("calder: ", 0) == 0) message.erase(0, 8);
   err << "calder: " << one_line(message) << '\n';
   err.flush();
   return code;
@@ -62,6 +68,8 @@ int main(int argc, const char* const* argv, std::ostream& out, std::ostream& err
         // --help, --help-all, --version: to `out`, exit 0.
         std::ostringstream help_err;
         app.exit(e, out, help_err);
+        out.flush();
+        if (!out) return report(err, "standard output: write failed", exit_failure);
         return exit_success;
       }
       std::string hint = "see 'calder --help'";
@@ -72,11 +80,21 @@ int main(int argc, const char* const* argv, std::ostream& out, std::ostream& err
       if (dynamic_cast<const CLI::RequiredError*>(&e) != nullptr && argc <= 1) {
         what = "a command is required: list, run, render or window";
       }
+      const bool no_command = !run->parsed() && !render->parsed() && !window->parsed() &&
+                              !bench->parsed() && !app.get_subcommand("list")->parsed();
+      if (no_command && argc > 1 && argv[1][0] != '-') {
+        const std::vector<std::string_view> commands = {"list", "run", "render", "window", "bench"};
+        what = "unknown command '" + detail::printable(argv[1]) + "'";
+        if (const auto near = detail::closest(argv[1], commands)) {
+          what += " (did you mean '" + std::string(*near) + "'?)";
+        }
+        what += "; the commands are list, run, render, window and bench";
+      }
       return report(err, what + " (" + hint + ")", exit_usage);
     }
 
     if (run->parsed()) {
-      run_command(run_options, out);
+      run_command(run_options, out, err);
     } else if (render->parsed()) {
       render_command(render_options, out, err);
     } else if (window->parsed()) {
@@ -92,6 +110,8 @@ int main(int argc, const char* const* argv, std::ostream& out, std::ostream& err
   } catch (const Error& e) {  // calder::SceneFileError and other bad input
     return report(err, e.what(), exit_usage);
   } catch (const Interrupted& e) {
+    // The reader of a pipe went away (`calder run ... | head`): nothing to report.
+    if (e.signal_number() == SIGPIPE) return e.exit_code();
     return report(err, e.what(), e.exit_code());
   } catch (const RunError& e) {
     return report(err, e.what(), exit_failure);

@@ -18,6 +18,7 @@
 #include <calder/error.hpp>
 
 #include "errors.hpp"
+#include "progress.hpp"
 
 namespace calder::app {
 
@@ -34,18 +35,26 @@ extern "C" void remove_temp_and_reraise(int signal_number) {
   std::raise(signal_number);
 }
 
+// Every terminating signal that was not ignored at start removes the
+// temporary and ends the process by that signal (the shell sees 128 + it).
 void watch_signals(const std::string& temp) {
   if (temp.size() >= kMaxPath) return;
   std::memcpy(g_temp_path, temp.c_str(), temp.size() + 1);
   g_has_temp.store(true);
-  std::signal(SIGINT, remove_temp_and_reraise);
-  std::signal(SIGTERM, remove_temp_and_reraise);
+  for (const int signal_number : terminating_signals) {
+    struct sigaction old {};
+    ::sigaction(signal_number, nullptr, &old);
+    if (old.sa_handler != SIG_IGN) std::signal(signal_number, remove_temp_and_reraise);
+  }
 }
 
 void unwatch_signals() {
   g_has_temp.store(false);
-  std::signal(SIGINT, SIG_DFL);
-  std::signal(SIGTERM, SIG_DFL);
+  for (const int signal_number : terminating_signals) {
+    struct sigaction old {};
+    ::sigaction(signal_number, nullptr, &old);
+    if (old.sa_handler == remove_temp_and_reraise) std::signal(signal_number, SIG_DFL);
+  }
 }
 
 }  // namespace
@@ -66,11 +75,11 @@ OutputFile::OutputFile(std::string path) : path_(std::move(path)) {
                      "' does not exist");
   }
   try {
-    file_.emplace("calder", path_);
+    file_.emplace("", path_);
   } catch (const calder::Error& e) {
     throw InputError(e.what());
   }
-  watch_signals(file_->temp_path());
+  if (!file_->temp_path().empty()) watch_signals(file_->temp_path());
   buffer_ = std::make_unique<Buffer>(*file_);
   out_ = std::make_unique<std::ostream>(buffer_.get());
 }
@@ -90,9 +99,9 @@ void OutputFile::commit() {
     return;
   }
   if (!buffer_->flush_all() || !*out_) {
-    const std::string error = buffer_->error();
+    const std::string error = write_error();
     discard();
-    throw RunError(path_ + ": write failed: " + error);
+    throw RunError(error);
   }
   try {
     file_->commit();
@@ -102,6 +111,19 @@ void OutputFile::commit() {
   }
   committed_ = true;
   unwatch_signals();
+}
+
+std::string OutputFile::write_error() const {
+  if (is_stdout()) return "standard output: write failed";
+  if (buffer_ && !buffer_->error().empty()) return buffer_->error();
+  return "cannot write '" + detail::printable(path_, 240) + "'";
+}
+
+void OutputFile::check_stream(const std::ostream& s) {
+  if (s) return;
+  const std::string error = write_error();
+  discard();
+  throw RunError(error);
 }
 
 void OutputFile::discard() noexcept {
@@ -116,6 +138,7 @@ OutputFile::Buffer::Buffer(calder::OutputFile& file) : file_(&file), data_(std::
 }
 
 bool OutputFile::Buffer::flush_all() {
+  if (!error_.empty()) return false;  // the first failure stands; the file is gone
   const auto size = static_cast<std::size_t>(pptr() - pbase());
   if (size == 0) return error_.empty();
   try {

@@ -1,12 +1,13 @@
 // SPDX-License-Identifier: MIT
 // calder command: an output file that appears whole or not at all.
 //
-// The data goes to a temporary file in the target's directory
-// (calder::OutputFile: mode 0644, flushed to disk), renamed over the target only by commit(),
-// after everything was written and flushed. If commit() is never reached (an
-// error, an exception) the destructor removes the temporary; so does SIGINT
-// or SIGTERM while one exists. The target is never left half written.
-// The path "-" means standard output (written directly, nothing to rename).
+// calder::OutputFile decides how (see calder/output_file.hpp): a regular
+// file is written to a temporary in its folder, renamed over it only by
+// commit(), after everything was written and flushed; a symbolic link is
+// followed; a FIFO or a device is written directly. If commit() is never
+// reached (an error, an exception) the destructor removes the temporary; so
+// does every terminating signal while one exists (progress.hpp). The target is
+// never left half written. The path "-" means standard output.
 #pragma once
 
 #include <calder/output_file.hpp>
@@ -38,7 +39,13 @@ class OutputFile {
   // it does nothing: the caller flushes and checks standard output.
   void commit();
 
+  // Throws RunError (after removing the temporary) if a write to `s` (this
+  // file's stream, or standard output for "-") has failed: called after each
+  // frame, it stops a run at its first failed write.
+  void check_stream(const std::ostream& s);
+
  private:
+  [[nodiscard]] std::string write_error() const;
   // A buffered stream onto calder::OutputFile::write_all; a failed write
   // sets badbit and keeps its error for commit().
   class Buffer : public std::streambuf {

@@ -106,15 +106,16 @@ InterruptGuard::InterruptGuard() {
   action.sa_flags = 0;
   // A signal ignored when we started (nohup, a background job of a script)
   // stays ignored.
-  ::sigaction(SIGINT, nullptr, &old_int_);
-  ::sigaction(SIGTERM, nullptr, &old_term_);
-  if (old_int_.sa_handler != SIG_IGN) ::sigaction(SIGINT, &action, nullptr);
-  if (old_term_.sa_handler != SIG_IGN) ::sigaction(SIGTERM, &action, nullptr);
+  for (std::size_t i = 0; i < terminating_signals.size(); ++i) {
+    ::sigaction(terminating_signals[i], nullptr, &old_[i]);
+    if (old_[i].sa_handler != SIG_IGN) ::sigaction(terminating_signals[i], &action, nullptr);
+  }
 }
 
 InterruptGuard::~InterruptGuard() {
-  ::sigaction(SIGINT, &old_int_, nullptr);
-  ::sigaction(SIGTERM, &old_term_, nullptr);
+  for (std::size_t i = 0; i < terminating_signals.size(); ++i) {
+    ::sigaction(terminating_signals[i], &old_[i], nullptr);
+  }
 }
 
 void InterruptGuard::check() const {

@@ -4,14 +4,16 @@
 // and half-made output are removed).
 //
 //   Progress progress(err, "render example-2.7", 600, !quiet && stderr_is_terminal());
-//   InterruptGuard interrupt;  // SIGINT / SIGTERM now set a flag
+//   InterruptGuard interrupt;  // SIGINT, SIGTERM, SIGHUP, ... now set a flag
 //   for (...) { interrupt.check(); ...; progress.update(done); }
 //   progress.finish();
 #pragma once
 
 #include <signal.h>
 
+#include <array>
 #include <chrono>
+#include <csignal>
 #include <cstdint>
 #include <ostream>
 #include <string>
@@ -53,8 +55,13 @@ class Progress {
   Clock::time_point last_draw_;
 };
 
-// The job was stopped by SIGINT or SIGTERM: exit 128 + signal, after the
-// one-line message "interrupted".
+// The signals that end a job and that can be caught: each removes what the
+// run created (temporaries, staged frames) and exits 128 + the signal.
+constexpr std::array<int, 9> terminating_signals = {SIGINT,  SIGTERM, SIGHUP,  SIGQUIT, SIGPIPE,
+                                                    SIGXFSZ, SIGALRM, SIGUSR1, SIGUSR2};
+
+// The job was stopped by one of terminating_signals: exit 128 + signal, after
+// the one-line message "interrupted".
 class Interrupted : public RunError {
  public:
   explicit Interrupted(int signal_number)
@@ -66,8 +73,8 @@ class Interrupted : public RunError {
   int signal_number_;
 };
 
-// While alive, SIGINT and SIGTERM only set a flag (the previous handlers come
-// back on destruction); check() throws Interrupted once one arrived.
+// While alive, the terminating signals only set a flag (the previous handlers
+// come back on destruction); check() throws Interrupted once one arrived.
 class InterruptGuard {
  public:
   InterruptGuard();
@@ -78,8 +85,7 @@ class InterruptGuard {
   void check() const;
 
  private:
-  struct sigaction old_int_ {};
-  struct sigaction old_term_ {};
+  std::array<struct sigaction, terminating_signals.size()> old_{};
 };
 
 }  // namespace calder::app

@@ -25,7 +25,8 @@ namespace fs = std::filesystem;
 
 namespace {
 
-std::string quoted(const std::string& text) { return "'" + text + "'"; }
+std::string shown(const std::string& text) { return detail::printable(text, 240); }
+std::string quoted(const std::string& text) { return "'" + detail::printable(text) + "'"; }
 
 std::int64_t parse_every(const std::string& text) {
   const std::optional<std::int64_t> value = to_int64(text);
@@ -51,8 +52,11 @@ std::optional<int> side(const std::string& text) {
   return static_cast<int>(*value);
 }
 
-// The folder of PNG frames: created when missing; what this run wrote (and
-// the folders it created) is removed again unless commit() is reached.
+// The folder of PNG frames: created when missing. The frames are written to
+// a hidden staging folder inside it (".calder-frames.XXXXXX") and moved into
+// place only by commit(): a failed or interrupted run removes what it staged
+// (and the folders it created) and leaves the frames of an earlier run as they
+// were.
 class PngFolder {
  public:
   explicit PngFolder(std::string dir) : dir_(std::move(dir)) {
@@ -69,19 +73,26 @@ class PngFolder {
     }
     if (missing.empty() || missing.back() != p) {  // p exists: it must be a folder
       if (!fs::is_directory(p, ec)) {
-        throw InputError(dir_ + ": cannot write PNG frames there: " +
+        throw InputError(shown(dir_) + ": cannot write PNG frames there: " +
                          (p == target ? std::string("it is not a directory")
-                                      : "'" + p.string() + "' is not a directory"));
+                                      : "'" + shown(p.string()) + "' is not a directory"));
       }
     }
     for (auto it = missing.rbegin(); it != missing.rend(); ++it) {
       if (!fs::create_directory(*it, ec) && ec) {
         const std::string reason = ec.message();
         remove_created();
-        throw InputError(dir_ + ": cannot create the directory: " + reason);
+        throw InputError(shown(dir_) + ": cannot create the directory: " + reason);
       }
       created_.push_back(*it);
     }
+    std::string staging = (fs::path(dir_) / ".calder-frames.XXXXXX").string();
+    if (::mkdtemp(staging.data()) == nullptr) {
+      const std::string reason = std::generic_category().message(errno);
+      remove_created();
+      throw InputError(shown(dir_) + ": cannot write PNG frames there: " + reason);
+    }
+    staging_ = staging;
   }
 
   ~PngFolder() {
@@ -90,33 +101,48 @@ class PngFolder {
   PngFolder(const PngFolder&) = delete;
   PngFolder& operator=(const PngFolder&) = delete;
 
-  // Writes frame-<index>.png. A failure on the first file is bad output
-  // (exit 2); later ones are a failed run (exit 1).
+  // Writes frame-<index>.png (to the staging folder). A failure on the first
+  // file is bad output (exit 2); later ones are a failed run (exit 1).
   void write(const Canvas& canvas, std::int64_t index) {
     char name[32];
     std::snprintf(name, sizeof name, "frame-%06lld.png", static_cast<long long>(index));
-    const std::string path = (fs::path(dir_) / name).string();
+    const std::string path = (fs::path(staging_) / name).string();
     try {
       canvas.write_png(path);
     } catch (const Error& e) {
-      if (written_.empty()) throw InputError(std::string("--png: ") + e.what());
-      throw RunError(std::string("--png: ") + e.what());
+      std::string what = e.what();
+      const std::size_t at = what.find(staging_);  // name the frame as it will be called
+      if (at != std::string::npos) what.replace(at, staging_.size(), dir_);
+      if (names_.empty()) throw InputError("--png: " + what);
+      throw RunError("--png: " + what);
     }
-    written_.push_back(path);
+    names_.emplace_back(name);
   }
 
-  void commit() { committed_ = true; }
+  // Moves the staged frames into the folder (over earlier frames of the same names).
+  void commit() {
+    for (const std::string& name : names_) {
+      const std::string from = (fs::path(staging_) / name).string();
+      const std::string to = (fs::path(dir_) / name).string();
+      if (std::rename(from.c_str(), to.c_str()) != 0) {
+        throw RunError("--png: cannot move '" + shown(name) + "' into " + shown(dir_) + ": " +
+                       std::generic_category().message(errno));
+      }
+    }
+    std::error_code ec;
+    fs::remove(staging_, ec);
+    committed_ = true;
+  }
 
-  [[nodiscard]] std::size_t count() const { return written_.size(); }
+  [[nodiscard]] std::size_t count() const { return names_.size(); }
   [[nodiscard]] const std::string& dir() const { return dir_; }
-  [[nodiscard]] std::string name(std::size_t k) const {
-    return fs::path(written_.at(k)).filename().string();
-  }
+  [[nodiscard]] const std::string& name(std::size_t k) const { return names_.at(k); }
 
  private:
   void discard() noexcept {
-    for (const std::string& path : written_) ::unlink(path.c_str());
-    written_.clear();
+    std::error_code ec;
+    if (!staging_.empty()) fs::remove_all(staging_, ec);
+    names_.clear();
     remove_created();
   }
   void remove_created() noexcept {
@@ -126,8 +152,9 @@ class PngFolder {
   }
 
   std::string dir_;
-  std::vector<fs::path> created_;  // outermost first
-  std::vector<std::string> written_;
+  std::string staging_;
+  std::vector<fs::path> created_;   // outermost first
+  std::vector<std::string> names_;  // staged frames
   bool committed_ = false;
 };
 
@@ -326,6 +353,9 @@ void render_command(const RenderOptions& options, std::ostream& out, std::ostrea
   } catch (const Error& e) {
     throw InputError(std::string("--size/--scale: ") + e.what());
   }
+  // From here on a terminating signal only sets a flag: the run stops at the
+  // next frame and the destructors remove the GIF's temporary and the staged frames.
+  const InterruptGuard interrupt;
   std::optional<GifWriter> gif;
   if (options.gif) {
     try {
@@ -337,8 +367,7 @@ void render_command(const RenderOptions& options, std::ostream& out, std::ostrea
   std::optional<PngFolder> png;
   if (options.png) png.emplace(*options.png);
 
-  const InterruptGuard interrupt;
-  Progress progress(err, "render " + input.scene.name, frames,
+  Progress progress(err, "render " + detail::printable(input.scene.name), frames,
                     !options.quiet && stderr_is_terminal());
   std::int64_t index = 0;
   const auto emit = [&]() {

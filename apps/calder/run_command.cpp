@@ -11,6 +11,7 @@
 #include "calder/world.hpp"
 #include "errors.hpp"
 #include "output_file.hpp"
+#include "progress.hpp"
 #include "summary.hpp"
 #include "trajectory_json.hpp"
 
@@ -24,10 +25,15 @@ bool ends_with(const std::string& s, const std::string& suffix) {
 }
 
 template <class Writer>
-void write_run(Simulation& simulation, const PreparedInput& input, Writer& writer) {
+void write_run(Simulation& simulation, const PreparedInput& input, Writer& writer, OutputFile& file,
+               const std::ostream& stream, const std::function<void(std::int64_t)>& after_frame) {
   writer.write(0, simulation.world());
-  run_frames(simulation, input.scene.frames, input.source,
-             [&](std::int64_t frame) { writer.write(frame, simulation.world()); });
+  file.check_stream(stream);
+  run_frames(simulation, input.scene.frames, input.source, [&](std::int64_t frame) {
+    writer.write(frame, simulation.world());
+    after_frame(frame);         // a signal first: SIGPIPE also fails the write
+    file.check_stream(stream);  // the first failed write stops the run
+  });
 }
 
 }  // namespace
@@ -95,14 +101,25 @@ void run_frames(Simulation& simulation, std::int64_t frames, const std::string& 
   }
 }
 
-void run_command(const RunOptions& options, std::ostream& out) {
+void run_command(const RunOptions& options, std::ostream& out, std::ostream& err) {
   if (options.trajectory) (void)trajectory_format(options.format, *options.trajectory);
   const PreparedInput input = prepare_input(options.input);
   Simulation simulation = start_simulation(input);
   const std::int64_t frames = input.scene.frames;
 
+  // A terminating signal stops the run at the next frame (exit 128 + signal,
+  // the temporary removed); long runs show their progress on a terminal.
+  const InterruptGuard interrupt;
+  Progress progress(err, "run " + detail::printable(input.scene.name), frames,
+                    stderr_is_terminal());
+  const auto after_frame = [&](std::int64_t frame) {
+    interrupt.check();
+    progress.update(frame);
+  };
+
   if (!options.trajectory) {
-    run_frames(simulation, frames, input.source, nullptr);
+    run_frames(simulation, frames, input.source, after_frame);
+    progress.finish();
     print_summary(out, simulation, input.effective_seed());
     return;
   }
@@ -114,14 +131,14 @@ void run_command(const RunOptions& options, std::ostream& out) {
   std::ostream& stream = file.is_stdout() ? out : file.stream();
   if (format == TrajectoryFormat::csv) {
     TrajectoryWriter writer(stream);
-    write_run(simulation, input, writer);
+    write_run(simulation, input, writer, file, stream, after_frame);
   } else {
     TrajectoryJsonWriter writer(stream, {.scene = simulation.scene().name,
                                          .frames = frames,
                                          .bodies = simulation.world().body_count(),
                                          .dt = simulation.world().dt(),
                                          .seed = input.effective_seed()});
-    write_run(simulation, input, writer);
+    write_run(simulation, input, writer, file, stream, after_frame);
     writer.finish();
   }
   if (file.is_stdout()) {
@@ -129,6 +146,7 @@ void run_command(const RunOptions& options, std::ostream& out) {
     if (!out) throw RunError("standard output: write failed");
   }
   file.commit();
+  progress.finish();
 }
 
 void print_scene_list(std::ostream& out) {

@@ -34,7 +34,7 @@ CLI::App* add_run_command(CLI::App& app, RunOptions& options);
 // Runs it: the summary goes to `out` (or the trajectory, for "-").
 // Throws InputError or calder::SceneFileError for bad input (exit 2),
 // RunError when a step or a write fails (exit 1).
-void run_command(const RunOptions& options, std::ostream& out);
+void run_command(const RunOptions& options, std::ostream& out, std::ostream& err);
 
 // --format, or else json for a path ending in ".json", csv otherwise.
 TrajectoryFormat trajectory_format(const std::optional<std::string>& format,

@@ -2,9 +2,14 @@
 #include "run_options.hpp"
 
 #include <CLI/CLI.hpp>
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
 #include <utility>
+#include <variant>
 
 #include "calder/error.hpp"
+#include "calder/fields.hpp"
 #include "errors.hpp"
 #include "parse.hpp"
 #include "scene_source.hpp"
@@ -47,6 +52,33 @@ void add_input_options(CLI::App& command, InputOptions& options) {
                   "The mouse stays at X,Y for the whole run (replaces the scene's scripted "
                   "mouse position and moves)")
       ->type_name("X,Y");
+  command.add_flag("--no-work-limit", options.no_work_limit,
+                   "Run even when the work (bodies^2 x frames with mutual attraction, bodies x "
+                   "frames otherwise) is over the budget of 10^12");
+}
+
+double run_work(const Scene& scene, std::size_t bodies) {
+  const auto n = static_cast<double>(bodies);
+  double per_frame = n;
+  for (const SceneField& f : scene.fields) {
+    if (const auto* mutual = std::get_if<MutualAttraction>(&f.field)) {
+      if (!mutual->enabled) continue;
+      per_frame +=
+          mutual->method == NBodyMethod::barnes_hut ? n * std::max(1.0, std::log2(n)) : n * n;
+    }
+  }
+  return per_frame * static_cast<double>(std::max<std::int64_t>(scene.frames, 1));
+}
+
+void check_work_budget(const Scene& scene, std::size_t bodies, const std::string& source) {
+  const double work = run_work(scene, bodies);
+  if (work <= max_run_work) return;
+  char text[32];
+  std::snprintf(text, sizeof text, "%.3g", work);
+  throw InputError(detail::printable(source, 240) + ": " + std::to_string(bodies) + " bodies for " +
+                   std::to_string(scene.frames) + " frames is about " + text +
+                   " units of work (pair evaluations), over the budget of 1e12; use fewer "
+                   "bodies or --frames, or --no-work-limit to run it anyway");
 }
 
 InputFlags parse_input_flags(const InputOptions& options) {
@@ -116,6 +148,15 @@ PreparedInput prepare_input(const InputOptions& options) {
     }
     input.bodies = bodies_from_state(rows, input.scene);
     input.state_path = flags.state_path;
+  }
+  if (!options.no_work_limit) {
+    std::size_t bodies = 0;
+    if (input.bodies) {
+      bodies = input.bodies->size();
+    } else {
+      for (const BodyGroup& group : input.scene.bodies) bodies += group.count;
+    }
+    check_work_budget(input.scene, bodies, input.source);
   }
   return input;
 }

@@ -12,6 +12,7 @@
 //                           presses; "none" clears them
 //   --mouse X,Y             the mouse stays at X,Y for the whole run (replaces the
 //                           scene's scripted mouse position and moves)
+//   --no-work-limit         run even when the work is over max_run_work
 //
 // A verb adds them with add_input_options(), and after parsing turns them into
 // a ready Simulation with prepare_input() and start_simulation().
@@ -43,7 +44,18 @@ struct InputOptions {
   std::optional<std::string> state;
   std::vector<std::string> mouse_pressed;
   std::optional<std::string> mouse;
+  bool no_work_limit = false;  // --no-work-limit
 };
+
+// The work budget of one run: frames x (bodies + bodies^2 for each exact or
+// direct mutual attraction, bodies x log2(bodies) for Barnes-Hut). Over it,
+// prepare_input refuses the run (exit 2) unless --no-work-limit is given:
+// 10^12 pair evaluations take tens of minutes to hours on one machine.
+constexpr double max_run_work = 1e12;
+// The work of a scene with this many bodies (see max_run_work).
+double run_work(const Scene& scene, std::size_t bodies);
+// Throws InputError naming `source` when run_work is over max_run_work.
+void check_work_budget(const Scene& scene, std::size_t bodies, const std::string& source);
 
 // Adds the SCENE|FILE argument and the input flags to a verb.
 void add_input_options(CLI::App& command, InputOptions& options);

@@ -2,8 +2,12 @@
 #include "scene_source.hpp"
 
 #include <filesystem>
+#include <string>
+#include <string_view>
 #include <system_error>
+#include <vector>
 
+#include "calder/error.hpp"
 #include "errors.hpp"
 
 #if CALDER_APP_HAS_SCENE_FILE
@@ -17,6 +21,19 @@ namespace {
 bool ends_with(const std::string& s, const std::string& suffix) {
   return s.size() >= suffix.size() &&
          s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
+}
+
+// The .toml files of the current folder (at most the first 1000 entries looked at).
+std::vector<std::string> scene_files_here() {
+  std::vector<std::string> files;
+  std::error_code ec;
+  std::size_t looked = 0;
+  for (std::filesystem::directory_iterator it(".", ec), end; !ec && it != end && looked < 1000;
+       it.increment(ec), ++looked) {
+    const std::string name = it->path().filename().string();
+    if (ends_with(name, ".toml") && name.size() <= 64) files.push_back(name);
+  }
+  return files;
 }
 
 }  // namespace
@@ -34,16 +51,28 @@ Scene load_scene_argument(const std::string& argument) {
       if (info.name == argument) return builtin_scene(argument);
     }
     std::string names;
+    std::vector<std::string_view> candidates;
     for (const SceneInfo& info : builtin_scenes()) {
       names += names.empty() ? "" : ", ";
       names += info.name;
+      candidates.emplace_back(info.name);
     }
-    throw InputError("unknown scene '" + argument + "': not a built-in scene (" + names +
+    std::string message = "unknown scene '" + detail::printable(argument) + "'";
+    // A scene file of this folder named like it ("three" for three.toml), or
+    // a built-in scene it is a typo of.
+    const std::vector<std::string> files = scene_files_here();
+    for (const std::string& file : files) candidates.emplace_back(file);
+    if (const auto near = detail::closest(argument, candidates)) {
+      message += " (did you mean '" + std::string(*near) + "'?)";
+    } else if (const auto file = detail::closest(argument + ".toml", candidates)) {
+      message += " (did you mean '" + std::string(*file) + "'?)";
+    }
+    throw InputError(message + ": not a built-in scene (" + names +
                      ") nor a scene file (a path that exists or ends in .toml)");
   }
   std::error_code ec;
   if (std::filesystem::is_directory(argument, ec)) {
-    throw InputError(argument + ": is a directory, not a scene file");
+    throw InputError(detail::printable(argument, 240) + ": is a directory, not a scene file");
   }
 #if CALDER_APP_HAS_SCENE_FILE
   return load_scene_file(argument);

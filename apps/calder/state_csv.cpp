@@ -1,16 +1,24 @@
 // SPDX-License-Identifier: MIT
 #include "state_csv.hpp"
 
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
 #include <array>
 #include <cerrno>
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <string_view>
 #include <system_error>
 
+#include "calder/error.hpp"
+#include "calder/scene.hpp"
 #include "calder/trajectory.hpp"
 #include "errors.hpp"
 #include "parse.hpp"
@@ -34,11 +42,32 @@ std::string_view strip_cr(std::string_view s) {
   return s;
 }
 
-// Text of a field for a message: quoted, cut short if long.
-std::string shown(std::string_view field) {
-  constexpr std::size_t kMax = 40;
-  if (field.size() > kMax) return "'" + std::string(field.substr(0, kMax)) + "...'";
-  return "'" + std::string(field) + "'";
+// Text of a field for a message: quoted, control characters escaped, cut short if long.
+std::string shown(std::string_view field) { return "'" + detail::printable(field, 40) + "'"; }
+
+// One line of at most max_state_line_bytes bytes into `line` (without its
+// '\n'); false at the end of the input. Throws on a longer line, before
+// storing it.
+bool read_line(std::istream& in, std::string& line,
+               const std::function<InputError(std::string)>& fail) {
+  line.clear();
+  std::streambuf* buffer = in.rdbuf();
+  while (true) {
+    const std::streambuf::int_type c = buffer->sbumpc();
+    if (std::streambuf::traits_type::eq_int_type(c, std::streambuf::traits_type::eof())) {
+      if (line.empty()) {
+        in.setstate(std::ios::eofbit);
+        return false;
+      }
+      return true;
+    }
+    if (c == '\n') return true;
+    if (line.size() >= max_state_line_bytes) {
+      throw fail("a line longer than " + std::to_string(max_state_line_bytes) +
+                 " bytes (the limit of --state files)");
+    }
+    line += std::streambuf::traits_type::to_char_type(c);
+  }
 }
 
 }  // namespace
@@ -49,7 +78,8 @@ std::vector<StateRow> parse_state_csv(std::istream& in, const std::string& sourc
   };
   std::string text;
   std::size_t line = 0;
-  if (!std::getline(in, text)) {
+  const auto fail_here = [&](const std::string& what) { return fail(line + 1, what); };
+  if (!read_line(in, text, fail_here)) {
     throw fail(1, "empty file: expected the header '" + std::string(kHeader) + "' or '" +
                       std::string(kHeaderWithRadius) + "'");
   }
@@ -67,7 +97,7 @@ std::vector<StateRow> parse_state_csv(std::istream& in, const std::string& sourc
   }
 
   std::vector<StateRow> rows;
-  while (std::getline(in, text)) {
+  while (read_line(in, text, fail_here)) {
     ++line;
     const std::string_view row = strip_cr(text);
     if (trim(row).empty()) continue;
@@ -98,6 +128,10 @@ std::vector<StateRow> parse_state_csv(std::istream& in, const std::string& sourc
                            std::string(columns == 5 ? kHeader : kHeaderWithRadius) + "), got " +
                            std::to_string(count));
     }
+    if (rows.size() == max_bodies) {
+      throw fail(line, "more than " + std::to_string(max_bodies) +
+                           " rows (the limit of bodies in a scene)");
+    }
     StateRow r;
     r.x = values[0];
     r.y = values[1];
@@ -120,16 +154,58 @@ std::vector<StateRow> parse_state_csv(std::istream& in, const std::string& sourc
 }
 
 std::vector<StateRow> read_state_csv(const std::string& path) {
+  const std::string name = detail::printable(path, 240);
   std::error_code ec;
   if (std::filesystem::is_directory(path, ec)) {
-    throw InputError(path + ": is a directory, not a CSV file");
+    throw InputError(name + ": is a directory, not a CSV file");
+  }
+  // O_NONBLOCK: opening a FIFO must not wait for a writer (it is refused below).
+  const int fd = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC);
+  if (fd < 0) {
+    const int error = errno;
+    throw InputError(name + ": cannot open: " + std::strerror(error));
+  }
+  struct stat info {};
+  const bool regular = ::fstat(fd, &info) == 0 && S_ISREG(info.st_mode);
+  ::close(fd);
+  if (!regular) {
+    throw InputError(name +
+                     ": not a regular file (--state files are read whole; a device, "
+                     "FIFO or socket is refused)");
+  }
+  if (static_cast<std::uint64_t>(info.st_size) > max_state_file_bytes) {
+    throw InputError(name + ": larger than " + std::to_string(max_state_file_bytes >> 20) +
+                     " MiB, the limit of --state files");
   }
   std::ifstream in(path, std::ios::binary);
   if (!in) {
     const int error = errno;
-    throw InputError(path + ": cannot open: " + std::strerror(error));
+    throw InputError(name + ": cannot open: " + std::strerror(error));
   }
-  return parse_state_csv(in, path);
+  // Count the rows before storing any: too many are refused at once.
+  std::size_t rows = 0;
+  bool blank = true;
+  std::array<char, 65536> chunk{};
+  while (in) {
+    in.read(chunk.data(), chunk.size());
+    for (std::streamsize i = 0; i < in.gcount(); ++i) {
+      const char c = chunk[static_cast<std::size_t>(i)];
+      if (c == '\n') {
+        rows += blank ? 0 : 1;
+        blank = true;
+      } else if (c != ' ' && c != '\t' && c != '\r') {
+        blank = false;
+      }
+    }
+  }
+  rows += blank ? 0 : 1;
+  if (rows > max_bodies + 1) {  // + 1: the header
+    throw InputError(name + ": " + std::to_string(rows - 1) + " rows, more than " +
+                     std::to_string(max_bodies) + " (the limit of bodies in a scene)");
+  }
+  in.clear();
+  in.seekg(0);
+  return parse_state_csv(in, name);
 }
 
 }  // namespace calder::app

@@ -9,12 +9,19 @@
 // naming the file and line: "state.csv:3: mass must be > 0 (got -1)".
 #pragma once
 
+#include <cstddef>
 #include <istream>
 #include <optional>
 #include <string>
 #include <vector>
 
 namespace calder::app {
+
+// Limits of --state files, checked before the data is stored: the file's
+// size (and that it is a regular file), each line's length, and the rows
+// (at most calder::max_bodies).
+constexpr std::size_t max_state_file_bytes = std::size_t{1} << 30;  // 1 GiB
+constexpr std::size_t max_state_line_bytes = 4096;
 
 struct StateRow {
   double x = 0.0;

@@ -50,7 +50,7 @@ void print_summary(std::ostream& out, const Simulation& simulation, std::uint32_
   } catch (const Error& e) {
     why_not = e.what();
   }
-  line(out, "scene", simulation.scene().name);
+  line(out, "scene", detail::printable(simulation.scene().name, 200));
   line(out, "frames", std::to_string(simulation.frame()));
   line(out, "bodies", std::to_string(world.body_count()));
   line(out, "dt", format_number(world.dt()));

@@ -24,6 +24,7 @@
 #include "calder/world.hpp"
 #include "errors.hpp"
 #include "parse.hpp"
+#include "progress.hpp"
 
 namespace calder::app {
 
@@ -118,7 +119,9 @@ class WindowApp {
     if (options.screenshot) check_output_path("--screenshot", *options.screenshot);
   }
 
-  void run();
+  // Until q, Escape, the window's close, --frames or --exit-after-seconds;
+  // a terminating signal stops it at the next frame (Interrupted).
+  void run(const InterruptGuard& interrupt);
 
  private:
   void open();
@@ -189,6 +192,12 @@ void WindowApp::open() {
   if (!env_set("SDL_VIDEODRIVER") && !env_set("DISPLAY") && !env_set("WAYLAND_DISPLAY")) {
     throw InputError("no display: neither DISPLAY nor WAYLAND_DISPLAY is set");
   }
+  // Unless asked for one, only the drivers that show a window (no fallback to
+  // offscreen or dummy; no Wayland probe, and its noise, without WAYLAND_DISPLAY).
+  const bool driver_requested = env_set("SDL_VIDEODRIVER");
+  if (!driver_requested) {
+    SDL_SetHint(SDL_HINT_VIDEODRIVER, env_set("WAYLAND_DISPLAY") ? "wayland,x11" : "x11");
+  }
   SDL_SetHint(SDL_HINT_MOUSE_FOCUS_CLICKTHROUGH, "1");
   SDL_SetHint(SDL_HINT_VIDEO_X11_NET_WM_BYPASS_COMPOSITOR, "0");
   if (SDL_Init(SDL_INIT_VIDEO) != 0) {
@@ -197,6 +206,17 @@ void WindowApp::open() {
     throw InputError("no display: " + reason);
   }
   video_ = std::make_unique<SdlVideo>();
+  // With DISPLAY set but no server behind it, SDL falls back to a driver that
+  // shows nothing (offscreen, dummy): a window nobody sees, running until
+  // killed. Those are only for who asks for them by SDL_VIDEODRIVER.
+  const char* driver = SDL_GetCurrentVideoDriver();
+  const std::string driver_name = driver != nullptr ? driver : "";
+  if (!driver_requested && driver_name != "x11" && driver_name != "wayland") {
+    const char* display = std::getenv("DISPLAY");
+    throw InputError("no display: cannot connect to DISPLAY '" +
+                     detail::printable(display != nullptr ? display : "") +
+                     "' (SDL found only its '" + driver_name + "' driver)");
+  }
   const int width = canvas_.pixel_width();
   const int height = canvas_.pixel_height();
   window_.reset(SDL_CreateWindow("calder", SDL_WINDOWPOS_CENTERED, SDL_WINDOWPOS_CENTERED, width,
@@ -220,13 +240,14 @@ void WindowApp::open() {
   SDL_SetTextureBlendMode(texture_.get(), SDL_BLENDMODE_NONE);
   update_title();
   if (!options_.quiet) {
-    err_ << "calder window " << simulation_.scene().name << ": " << window_help() << '\n';
+    err_ << "calder window " << detail::printable(simulation_.scene().name, 200) << ": "
+         << window_help() << '\n';
     err_.flush();
   }
 }
 
 void WindowApp::update_title() {
-  std::string title = "calder: " + simulation_.scene().name;
+  std::string title = "calder: " + detail::printable(simulation_.scene().name, 200);
   std::string state;
   if (paused_) state += "paused at frame " + std::to_string(simulation_.frame());
   if (speed_ != 1.0) {
@@ -246,7 +267,7 @@ void WindowApp::update_title() {
   }
 }
 
-void WindowApp::run() {
+void WindowApp::run(const InterruptGuard& interrupt) {
   open();
   draw();
   const double frequency = static_cast<double>(SDL_GetPerformanceFrequency());
@@ -254,6 +275,7 @@ void WindowApp::run() {
   Uint64 last = start;
   if (at_frame_limit()) running_ = false;
   while (running_) {
+    interrupt.check();  // the recording's temporary goes with the destructors
     SDL_Event event;
     while (SDL_PollEvent(&event) != 0) handle(event);
     const Uint64 now = SDL_GetPerformanceCounter();
@@ -572,8 +594,11 @@ void window_command(const WindowOptions& options, std::ostream& out, std::ostrea
   if (options.exit_after_seconds) (void)parse_seconds(*options.exit_after_seconds);
   if (options.screenshot) check_output_path("--screenshot", *options.screenshot);
   const PreparedInput input = prepare_input(options.input);
+  // Installed before SDL starts, SDL leaves SIGINT and SIGTERM to it: every
+  // terminating signal ends the window with exit 128 + signal, cleaned up.
+  const InterruptGuard interrupt;
   WindowApp app(options, input, out, err);
-  app.run();
+  app.run(interrupt);
 }
 
 }  // namespace calder::app

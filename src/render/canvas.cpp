@@ -34,14 +34,66 @@ void set_color(cairo_t* cr, const Color& c) { cairo_set_source_rgba(cr, c.r, c.g
 
 bool visible(const Color& c) { return c.a > 0.0; }
 
+// The part of the canvas a drawing can reach, in the world's coordinates.
+struct View {
+  double left, top, right, bottom;
+};
+
+// A path for a circle far larger than the view (radius over kHugeRadius
+// view diagonals): the work of cairo_arc grows with the radius (a radius of
+// 1e25 took seconds, 1e300 never ended), while over the view such an edge is
+// straight to a tenth of a pixel (sagitta diagonal^2 / (8 radius)). Returns
+// false when nothing of the disk or its edge reaches the view.
+constexpr double kHugeRadius = 1e4;
+
+bool huge_circle_path(cairo_t* cr, double x, double y, double radius, double margin,
+                      const View& view) {
+  const double cx = (view.left + view.right) / 2.0;
+  const double cy = (view.top + view.bottom) / 2.0;
+  const double half_diagonal = std::hypot(view.right - view.left, view.bottom - view.top) / 2.0;
+  const double d = std::hypot(cx - x, cy - y);  // no overflow for huge coordinates
+  const double inside = d - radius;             // < 0: the view's centre is in the disk
+  if (inside > half_diagonal + margin) return false;
+  const double reach = 2.0 * half_diagonal + margin;
+  if (inside < -reach || !(d > 0.0)) {
+    // The view lies wholly inside the disk.
+    cairo_rectangle(cr, view.left - margin, view.top - margin, view.right - view.left + 2 * margin,
+                    view.bottom - view.top + 2 * margin);
+    return true;
+  }
+  // The edge crosses the view: the half-plane behind its tangent at the
+  // point nearest the view's centre, clipped to a square around the view.
+  const double nx = (cx - x) / d;
+  const double ny = (cy - y) / d;
+  const double ex = cx - nx * inside;  // the edge's point nearest the view's centre
+  const double ey = cy - ny * inside;
+  cairo_move_to(cr, ex - ny * reach, ey + nx * reach);
+  cairo_line_to(cr, ex + ny * reach, ey - nx * reach);
+  cairo_line_to(cr, ex + ny * reach - nx * 2 * reach, ey - nx * reach - ny * 2 * reach);
+  cairo_line_to(cr, ex - ny * reach - nx * 2 * reach, ey + nx * reach - ny * 2 * reach);
+  cairo_close_path(cr);
+  return true;
+}
+
 // p5's circle(x, y, diameter) (or, with square, rectMode(CENTER) square of
 // side 2 * radius) with the current fill and stroke.
 void circle(cairo_t* cr, double x, double y, double radius, const Color& fill, const Color& stroke,
-            double stroke_weight, bool square = false) {
+            double stroke_weight, const View& view, bool square = false) {
   cairo_new_path(cr);
+  const double diagonal = std::hypot(view.right - view.left, view.bottom - view.top);
+  const double margin = stroke_weight + 1.0;
   if (radius > 0.0) {
     if (square) {
-      cairo_rectangle(cr, x - radius, y - radius, 2.0 * radius, 2.0 * radius);
+      // Clipped to the view: the same pixels, and no coordinates past Cairo's range.
+      const double x0 = std::max(x - radius, view.left - margin);
+      const double x1 = std::min(x + radius, view.right + margin);
+      const double y0 = std::max(y - radius, view.top - margin);
+      const double y1 = std::min(y + radius, view.bottom + margin);
+      if (!(x1 >= x0 && y1 >= y0)) return;
+      // The clipped sides are outside the view: their stroke isn't seen.
+      cairo_rectangle(cr, x0, y0, x1 - x0, y1 - y0);
+    } else if (radius > kHugeRadius * diagonal) {
+      if (!huge_circle_path(cr, x, y, radius, margin, view)) return;
     } else {
       cairo_arc(cr, x, y, radius, 0.0, 2.0 * kPi);
     }
@@ -56,7 +108,11 @@ void circle(cairo_t* cr, double x, double y, double radius, const Color& fill, c
     }
   } else if (visible(stroke) && stroke_weight > 0.0) {
     // A point body: p5's point(), a dot as wide as the stroke.
-    cairo_arc(cr, x, y, stroke_weight / 2.0, 0.0, 2.0 * kPi);
+    if (stroke_weight / 2.0 > kHugeRadius * diagonal) {
+      if (!huge_circle_path(cr, x, y, stroke_weight / 2.0, 1.0, view)) return;
+    } else {
+      cairo_arc(cr, x, y, stroke_weight / 2.0, 0.0, 2.0 * kPi);
+    }
     set_color(cr, stroke);
     cairo_fill_preserve(cr);
   }
@@ -383,7 +439,7 @@ void Canvas::Impl::draw_fields(const World& world, const Scene* scene, const Ren
         continue;
       }
       circle(cr, p.x, p.y, radius, style.attractor_fill, style.attractor_stroke,
-             style.attractor_stroke_weight);
+             style.attractor_stroke_weight, {left, top, right, bottom});
     } else if (const auto* mutual = std::get_if<MutualAttraction>(&field)) {
       if (!mutual->enabled || !mutual->central || !style.show_central_body) continue;
       const Vec2 p = mutual->central->position;
@@ -392,7 +448,8 @@ void Canvas::Impl::draw_fields(const World& world, const Scene* scene, const Ren
       if (p.x + reach < left || p.x - reach > right || p.y + reach < top || p.y - reach > bottom) {
         continue;
       }
-      circle(cr, p.x, p.y, radius, style.body_fill, style.body_stroke, style.body_stroke_weight);
+      circle(cr, p.x, p.y, radius, style.body_fill, style.body_stroke, style.body_stroke_weight,
+             {left, top, right, bottom});
     }
   }
 }
@@ -407,7 +464,8 @@ void Canvas::Impl::draw_bodies(const World& world, const RenderStyle& style, dou
     const double r = bodies.radius[i];
     const double reach = r + stroke;
     if (x + reach < left || x - reach > right || y + reach < top || y - reach > bottom) continue;
-    circle(cr, x, y, r, style.body_fill, style.body_stroke, stroke, style.squares);
+    circle(cr, x, y, r, style.body_fill, style.body_stroke, stroke, {left, top, right, bottom},
+           style.squares);
   }
 }
 

@@ -5,7 +5,10 @@
 // value; this file walks the document, checks every key against the keys its
 // table may hold, converts every value with its location at hand, and so
 // reports each problem as "FILE:LINE:COLUMN: problem".
+#include <fcntl.h>
+#include <sys/stat.h>
 #include <toml++/toml.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <array>
@@ -33,6 +36,7 @@
 #include "calder/scene_file.hpp"
 #include "calder/trajectory.hpp"
 #include "names.hpp"
+#include "text_check.hpp"
 
 namespace calder {
 
@@ -57,45 +61,10 @@ using Keys = std::vector<std::string_view>;
 
 // --- words for messages ---------------------------------------------------------
 
-// Optimal string alignment distance (Levenshtein plus adjacent transpositions).
-std::size_t edit_distance(std::string_view a, std::string_view b) {
-  std::vector<std::vector<std::size_t>> d(a.size() + 1, std::vector<std::size_t>(b.size() + 1));
-  for (std::size_t i = 0; i <= a.size(); ++i) d[i][0] = i;
-  for (std::size_t j = 0; j <= b.size(); ++j) d[0][j] = j;
-  for (std::size_t i = 1; i <= a.size(); ++i) {
-    for (std::size_t j = 1; j <= b.size(); ++j) {
-      const std::size_t cost = a[i - 1] == b[j - 1] ? 0 : 1;
-      d[i][j] = std::min({d[i - 1][j] + 1, d[i][j - 1] + 1, d[i - 1][j - 1] + cost});
-      if (i > 1 && j > 1 && a[i - 1] == b[j - 2] && a[i - 2] == b[j - 1]) {
-        d[i][j] = std::min(d[i][j], d[i - 2][j - 2] + 1);
-      }
-    }
-  }
-  return d[a.size()][b.size()];
-}
-
-std::string lower(std::string_view s) {
-  std::string out(s);
-  for (char& c : out) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return out;
-}
-
 // The candidate closest to word when it is close enough to be a likely typo
-// (differs only in case, or by one edit in a short word, two in a longer one).
+// (see calder::detail::closest).
 std::optional<std::string_view> nearest(std::string_view word, const Keys& candidates) {
-  const std::string word_lower = lower(word);
-  std::optional<std::string_view> best;
-  std::size_t best_distance = std::numeric_limits<std::size_t>::max();
-  for (const std::string_view c : candidates) {
-    const std::size_t d = lower(c) == word_lower ? 0 : edit_distance(word_lower, lower(c));
-    if (d < best_distance) {
-      best_distance = d;
-      best = c;
-    }
-  }
-  const std::size_t limit = word.size() <= 3 ? 1 : 2;
-  if (best && best_distance <= limit && best_distance < word.size()) return best;
-  return std::nullopt;
+  return detail::closest(word, candidates);
 }
 
 std::string join(const Keys& words) {
@@ -114,7 +83,9 @@ Keys names(const std::array<Choice<E>, N>& choices) {
   return out;
 }
 
-std::string quote(std::string_view s) { return cat("'", s, "'"); }
+// Input shown in a message: control characters escaped, cut to a readable length.
+std::string quote(std::string_view s) { return cat("'", detail::printable(s), "'"); }
+std::string shown(std::string_view path) { return detail::printable(path, 240); }
 
 const char* type_name(const toml::node& n) {
   switch (n.type()) {
@@ -160,6 +131,11 @@ enum class Check { any, positive, non_negative };
 const Keys kFieldTypes = {"gravity", "wind",       "noise_wind", "helium",
                           "fan",     "edge_force", "friction",   "liquid",
                           "drag",    "lift",       "attractor",  "mutual_attraction"};
+
+// The keys of the top level, in the order docs/SCENES.md lists them.
+const Keys kTopLevelKeys = {"name",     "description", "frames", "seed",     "origin",
+                            "on_press", "canvas",      "world",  "boundary", "edges_first",
+                            "bodies",   "fields",      "input",  "look"};
 
 // --- the reader -------------------------------------------------------------------
 
@@ -213,7 +189,7 @@ class Reader {
 
   [[noreturn]] void fail(const toml::source_position& at, const std::string& problem) const {
     const toml::source_position where = at ? at : toml::source_position{1, 1};
-    throw SceneFileError(one_line(cat(source_, ":", std::to_string(where.line), ":",
+    throw SceneFileError(one_line(cat(shown(source_), ":", std::to_string(where.line), ":",
                                       std::to_string(where.column), ": ", problem)));
   }
   [[noreturn]] void fail(const toml::node& n, const std::string& problem) const {
@@ -378,6 +354,15 @@ void Tbl::allow(const Keys& keys) const {
   } else {
     m += cat(" (valid keys: ", join(keys), ")");
   }
+  const bool top_level_key =
+      std::find(kTopLevelKeys.begin(), kTopLevelKeys.end(), first->str()) != kTopLevelKeys.end();
+  if (top_level_key && t_->source().begin.line < first->source().begin.line) {
+    // TOML's rule that surprises: every key after a [table] or [[table]]
+    // header belongs to that table, up to the next header.
+    m += cat("; '", first->str(),
+             "' is a top-level key, but keys after a table header belong to "
+             "that table: write it above the first [table] or [[table]] header");
+  }
   r_->fail(first->source().begin, m);
 }
 
@@ -425,8 +410,7 @@ const toml::array* Tbl::array(std::string_view key) const {
 
 Scene Reader::scene(const toml::table& root) {
   const Tbl top(*this, root, "the top level");
-  top.allow({"name", "description", "frames", "seed", "origin", "on_press", "canvas", "world",
-             "boundary", "edges_first", "bodies", "fields", "input", "look"});
+  top.allow(kTopLevelKeys);
   Scene s;
   s.name = top.string("name", std::filesystem::path(source_).stem().string());
   s.description = top.string("description", "");
@@ -897,22 +881,43 @@ void Reader::validate(const Scene& scene) const {
 }
 
 std::string read_file(const std::string& path) {
-  std::FILE* file = std::fopen(path.c_str(), "rb");
   const auto cannot_read = [&](int error) {
-    return SceneFileError(one_line(
-        path + ": cannot read: " + std::error_code(error, std::generic_category()).message()));
+    return SceneFileError(one_line(shown(path) + ": cannot read: " +
+                                   std::error_code(error, std::generic_category()).message()));
   };
-  if (file == nullptr) throw cannot_read(errno);
+  // O_NONBLOCK: opening a FIFO must not wait for a writer (it is refused below).
+  const int fd = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC);
+  if (fd < 0) throw cannot_read(errno);
+  struct FdCloser {
+    int fd;
+    ~FdCloser() { ::close(fd); }
+  } closer{fd};
+  struct stat info {};
+  if (::fstat(fd, &info) != 0) throw cannot_read(errno);
+  if (S_ISDIR(info.st_mode)) throw cannot_read(EISDIR);
+  if (!S_ISREG(info.st_mode)) {
+    throw SceneFileError(shown(path) +
+                         ": not a regular file (scene files are read whole; "
+                         "a device, FIFO or socket is refused)");
+  }
+  const auto too_big = [&] {
+    return SceneFileError(cat(shown(path), ": larger than ",
+                              std::to_string(scene_file_detail::kMaxFileBytes >> 20),
+                              " MiB, the limit of scene files"));
+  };
+  if (static_cast<std::uint64_t>(info.st_size) > scene_file_detail::kMaxFileBytes) throw too_big();
   std::string text;
   std::array<char, 65536> buffer{};
   while (true) {
-    const std::size_t n = std::fread(buffer.data(), 1, buffer.size(), file);
-    text.append(buffer.data(), n);
-    if (n < buffer.size()) break;
+    const ssize_t n = ::read(fd, buffer.data(), buffer.size());
+    if (n < 0) {
+      if (errno == EINTR) continue;
+      throw cannot_read(errno);
+    }
+    if (n == 0) break;
+    text.append(buffer.data(), static_cast<std::size_t>(n));
+    if (text.size() > scene_file_detail::kMaxFileBytes) throw too_big();  // it grew meanwhile
   }
-  const int error = std::ferror(file) == 0 ? 0 : (errno != 0 ? errno : EIO);
-  std::fclose(file);
-  if (error != 0) throw cannot_read(error);
   return text;
 }
 
@@ -920,6 +925,16 @@ std::string read_file(const std::string& path) {
 
 Scene parse_scene(std::string_view text, const std::string& source_name) {
   Reader reader(source_name);
+  if (text.size() > scene_file_detail::kMaxFileBytes) {
+    reader.fail(toml::source_position{1, 1},
+                cat("larger than ", std::to_string(scene_file_detail::kMaxFileBytes >> 20),
+                    " MiB, the limit of scene files"));
+  }
+  if (const auto problem = scene_file_detail::check_text(text)) {
+    reader.fail(toml::source_position{static_cast<toml::source_index>(problem->line),
+                                      static_cast<toml::source_index>(problem->column)},
+                problem->what);
+  }
   toml::table root;
   try {
     root = toml::parse(text, std::string_view(source_name));

@@ -227,7 +227,7 @@ TEST(CliOutputFile, CommitReplacesTheTarget) {
   }
   EXPECT_EQ(read_all(path), "new\n");
   EXPECT_EQ(dir.entries(), std::vector<std::string>{"out.csv"});
-  // The mode a new file gets (0666 less the umask), not mkstemp's 0600.
+  // The existing file's mode (0666 less the umask, as ofstream made it), not mkstemp's 0600.
   const mode_t mask = ::umask(0);
   ::umask(mask);
   EXPECT_EQ(static_cast<unsigned>(fs::status(path).permissions()), 0666u & ~mask);
