@@ -81,14 +81,14 @@ int main(int argc, const char* const* argv, std::ostream& out, std::ostream& err
         what = "a command is required: list, run, render or window";
       }
       const bool no_command = !run->parsed() && !render->parsed() && !window->parsed() &&
-                              !bench->parsed() && !app.get_subcommand("list")->parsed();
+                              !app.get_subcommand("list")->parsed();
       if (no_command && argc > 1 && argv[1][0] != '-') {
-        const std::vector<std::string_view> commands = {"list", "run", "render", "window", "bench"};
+        const std::vector<std::string_view> commands = {"list", "run", "render", "window"};
         what = "unknown command '" + detail::printable(argv[1]) + "'";
         if (const auto near = detail::closest(argv[1], commands)) {
           what += " (did you mean '" + std::string(*near) + "'?)";
         }
-        what += "; the commands are list, run, render, window and bench";
+        what += "; the commands are list, run, render and window";
       }
       return report(err, what + " (" + hint + ")", exit_usage);
     }

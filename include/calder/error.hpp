@@ -31,7 +31,7 @@ void require_non_negative(double value, const char* where, const char* what);
 // Formats a double the way the messages show it (shortest round-trip form).
 std::string format_number(double value);
 // Text from input, fit for a one-line message: control characters (and DEL)
-// shown as \n, \t, \r or \xNN, and cut after max_bytes bytes with "..."
+// shown as `\n`, `\t`, `\r` or `\xNN`, and cut after max_bytes bytes with "..."
 // (never inside a UTF-8 sequence).
 std::string printable(std::string_view text, std::size_t max_bytes = 60);
 // The candidate closest to `word` when it is close enough to be a likely typo
