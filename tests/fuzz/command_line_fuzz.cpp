@@ -8,10 +8,11 @@
 // argument becomes '_' (no file outside that folder is named), and runs are
 // capped at a few frames so one input stays quick. `window` and `bench` are
 // left out: the first needs a display, the second is a timed measurement.
+// Run it with -timeout=0: libFuzzer's watchdog is SIGALRM, which calder takes,
+// like every terminating signal, as the order to stop (from any of its threads).
 #include <unistd.h>
 
 #include <array>
-#include <csignal>
 #include <cstddef>
 #include <cstdint>
 #include <cstdlib>
@@ -71,16 +72,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   for (const std::string& a : args) argv.push_back(a.c_str());
   std::ostringstream out;
   std::ostringstream err;
-  // libFuzzer's -timeout watchdog is SIGALRM, which calder, like any
-  // terminating signal, would take as the order to stop: held back during the
-  // call, it reaches libFuzzer's handler right after.
-  sigset_t alarm;
-  sigset_t previous;
-  sigemptyset(&alarm);
-  sigaddset(&alarm, SIGALRM);
-  sigprocmask(SIG_BLOCK, &alarm, &previous);
   const int status = calder::app::main(static_cast<int>(argv.size()), argv.data(), out, err);
-  sigprocmask(SIG_SETMASK, &previous, nullptr);
   // Nothing of one input stays for the next (PNG folders, trajectories).
   std::error_code ec;
   for (const auto& entry : std::filesystem::directory_iterator(".", ec)) {
