@@ -174,13 +174,14 @@ constexpr bool kFloatEstimate = true;
 }
 #else
 constexpr bool kFloatEstimate = false;
-[[gnu::always_inline]] inline VD rsqrt_estimate_via_float(VD v) { return v; }  // unused
+// (unused: kFloatEstimate is false)
+[[maybe_unused, gnu::always_inline]] inline VD rsqrt_estimate_via_float(VD v) { return v; }
 #endif
 constexpr int kFloatEstimateSteps = 3;
 
 // 2 / sqrt(r2) from float's estimate (see kFloatEstimate): the last Newton
 // step leaves out its factor 1/2, like rsqrt_scaled.
-[[gnu::always_inline]] inline VD rsqrt_scaled_via_float(VD r2) {
+[[maybe_unused, gnu::always_inline]] inline VD rsqrt_scaled_via_float(VD r2) {
   VD y = rsqrt_estimate_via_float(r2);
   const VD half_r2 = r2 * 0.5;
   for (int step = 1; step < kFloatEstimateSteps; ++step) y = y * (1.5 - half_r2 * (y * y));
