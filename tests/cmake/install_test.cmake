@@ -208,8 +208,9 @@ if(PKG_CONFIG AND PC_MODULES)
   endif()
   separate_arguments(pc_flags UNIX_COMMAND "${pc_flags}")
   set(pc_exe "${WORK_DIR}/pkg_config_consumer")
+  separate_arguments(cxx_flags_list UNIX_COMMAND "${CXX_FLAGS}")
   run_step("compile ${source} with pkg-config ${PC_MODULES} (${pc_flags})" "${CXX_COMPILER}"
-           -std=c++20 "${source}" -o "${pc_exe}" ${pc_flags})
+           -std=c++20 ${cxx_flags_list} "${source}" -o "${pc_exe}" ${pc_flags})
   get_filename_component(lib_dir "${pc_dir}" DIRECTORY)
   run_step("run the pkg-config consumer" "${CMAKE_COMMAND}" -E env "LD_LIBRARY_PATH=${lib_dir}"
            "${pc_exe}")
