@@ -134,7 +134,7 @@ void Scene::validate() const {
     try {
       calder::validate(f.field);
     } catch (const Error& e) {
-      throw Error(where + ": fields[" + std::to_string(k) + "]: " + e.what());
+      rethrow_with_context(e, where + ": fields[" + std::to_string(k) + "]: ");
     }
     const bool positioned =
         std::holds_alternative<Fan>(f.field) || std::holds_alternative<Attractor>(f.field);
