@@ -32,7 +32,7 @@ struct SceneFlag {
   void (*apply)(const std::string& flag, const std::string& text, Scene& scene);
 };
 
-const std::array<SceneFlag, 4> kSceneFlags = {{
+const std::array<SceneFlag, 3> kSceneFlags = {{
     {"--frames", "N", "Frames to run, 0 to 10000000 (default: the scene's)", &InputOptions::frames,
      [](const std::string& flag, const std::string& text, Scene& scene) {
        scene.frames = parse_frames(flag, text);
@@ -48,10 +48,6 @@ const std::array<SceneFlag, 4> kSceneFlags = {{
      [](const std::string& flag, const std::string& text, Scene& scene) {
        scene.input.mouse = parse_point(flag, text);
        scene.input.moves.clear();
-     }},
-    {"--max-speed", "X", "The scene's max_speed", &InputOptions::max_speed,
-     [](const std::string& flag, const std::string& text, Scene& scene) {
-       scene.world.max_speed = parse_dt(flag, text);
      }},
 }};
 

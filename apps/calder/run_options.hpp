@@ -35,7 +35,6 @@ struct InputOptions {
   std::optional<std::string> state;
   std::vector<std::string> mouse_pressed;
   std::optional<std::string> mouse;
-  std::optional<std::string> max_speed;
   bool no_work_limit = false;  // --no-work-limit
 };
 
