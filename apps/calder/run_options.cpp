@@ -3,7 +3,6 @@
 
 #include <CLI/CLI.hpp>
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <cstdio>
 #include <utility>
@@ -32,7 +31,7 @@ struct SceneFlag {
   void (*apply)(const std::string& flag, const std::string& text, Scene& scene);
 };
 
-const std::array<SceneFlag, 3> kSceneFlags = {{
+const SceneFlag kSceneFlags[] = {
     {"--frames", "N", "Frames to run, 0 to 10000000 (default: the scene's)", &InputOptions::frames,
      [](const std::string& flag, const std::string& text, Scene& scene) {
        scene.frames = parse_frames(flag, text);
@@ -49,7 +48,7 @@ const std::array<SceneFlag, 3> kSceneFlags = {{
        scene.input.mouse = parse_point(flag, text);
        scene.input.moves.clear();
      }},
-}};
+};
 
 }  // namespace
 
