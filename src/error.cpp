@@ -23,6 +23,19 @@
 #define CALDER_HAVE_FLOAT_TO_CHARS 1
 #endif
 
+namespace calder {
+
+void rethrow_with_context(const Error& error, std::string_view context) {
+  std::string message(context);
+  message += error.what();
+  if (dynamic_cast<const RunError*>(&error) != nullptr) throw RunError(message);
+  if (dynamic_cast<const InputError*>(&error) != nullptr) throw InputError(message);
+  if (dynamic_cast<const InvalidArgument*>(&error) != nullptr) throw InvalidArgument(message);
+  throw Error(message);
+}
+
+}  // namespace calder
+
 namespace calder::detail {
 
 namespace {
@@ -37,7 +50,7 @@ namespace {
   message += " (got ";
   message += format_number(value);
   message += ")";
-  throw Error(message);
+  throw InvalidArgument(message);
 }
 
 }  // namespace

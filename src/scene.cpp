@@ -82,6 +82,29 @@ Vec2 InputScript::mouse_at(std::int64_t frame) const {
   return at;
 }
 
+namespace {
+
+// The scripted mouse of a scene: press ranges, position and moves.
+void validate_input(const InputScript& input, const std::string& where) {
+  for (const FrameRange& r : input.mouse_pressed) {
+    if (r.first < 1 || r.last < r.first) {
+      throw Error(where + ": mouse_pressed range " + std::to_string(r.first) + "-" +
+                  std::to_string(r.last) + " must satisfy 1 <= first <= last");
+    }
+  }
+  detail::require_finite(input.mouse.x, where.c_str(), "mouse.x");
+  detail::require_finite(input.mouse.y, where.c_str(), "mouse.y");
+  std::int64_t previous = 0;
+  for (const MouseMove& m : input.moves) {
+    if (m.frame < previous) throw Error(where + ": mouse moves must be sorted by frame");
+    previous = m.frame;
+    detail::require_finite(m.position.x, where.c_str(), "mouse move x");
+    detail::require_finite(m.position.y, where.c_str(), "mouse move y");
+  }
+}
+
+}  // namespace
+
 void Scene::validate() const {
   const std::string where = "scene " + (name.empty() ? std::string("(unnamed)") : name);
   if (frames < 0 || frames > max_frames) {
@@ -134,7 +157,7 @@ void Scene::validate() const {
     try {
       calder::validate(f.field);
     } catch (const Error& e) {
-      throw Error(where + ": fields[" + std::to_string(k) + "]: " + e.what());
+      rethrow_with_context(e, where + ": fields[" + std::to_string(k) + "]: ");
     }
     const bool positioned =
         std::holds_alternative<Fan>(f.field) || std::holds_alternative<Attractor>(f.field);
@@ -145,21 +168,7 @@ void Scene::validate() const {
       throw Error(w + ": only an attractor can be dragged");
     }
   }
-  for (const FrameRange& r : input.mouse_pressed) {
-    if (r.first < 1 || r.last < r.first) {
-      throw Error(where + ": mouse_pressed range " + std::to_string(r.first) + "-" +
-                  std::to_string(r.last) + " must satisfy 1 <= first <= last");
-    }
-  }
-  detail::require_finite(input.mouse.x, where.c_str(), "mouse.x");
-  detail::require_finite(input.mouse.y, where.c_str(), "mouse.y");
-  std::int64_t previous = 0;
-  for (const MouseMove& m : input.moves) {
-    if (m.frame < previous) throw Error(where + ": mouse moves must be sorted by frame");
-    previous = m.frame;
-    detail::require_finite(m.position.x, where.c_str(), "mouse move x");
-    detail::require_finite(m.position.y, where.c_str(), "mouse move y");
-  }
+  validate_input(input, where);
   for (const double v : {look.trail_alpha, look.body_gray, look.body_alpha}) {
     if (!(v >= 0.0 && v <= 255.0)) {
       throw Error(where +

@@ -22,13 +22,7 @@
 #include "calder/random.hpp"
 #include "calder/vec2.hpp"
 #include "calder/world.hpp"
-
-namespace calder {
-// Readable failure messages (internal linkage: other test files may have their own).
-[[maybe_unused]] static void PrintTo(const Vec2& v, std::ostream* os) {
-  *os << "Vec2{" << v.x << ", " << v.y << "}";
-}
-}  // namespace calder
+#include "support/test_support.hpp"
 
 namespace {
 
@@ -42,23 +36,11 @@ using calder::UpdateOrder;
 using calder::Vec2;
 using calder::World;
 using calder::WorldDef;
+using calder::test::expect_error;
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr double kDt = 0.5;
-
-template <typename F>
-void expect_error(F f, std::initializer_list<const char*> needles) {
-  try {
-    f();
-    ADD_FAILURE() << "expected calder::Error";
-  } catch (const Error& e) {
-    for (const char* needle : needles) {
-      EXPECT_NE(std::string(e.what()).find(needle), std::string::npos)
-          << "message \"" << e.what() << "\" lacks \"" << needle << "\"";
-    }
-  }
-}
 
 // The book's update for one force from rest acceleration, dt: a = 0 + F / m,
 // v += a dt, x += v dt.

@@ -15,13 +15,7 @@
 #include "calder/forces.hpp"
 #include "calder/random.hpp"
 #include "calder/vec2.hpp"
-
-namespace calder {
-// Readable failure messages (internal linkage: other test files may have their own).
-[[maybe_unused]] static void PrintTo(const Vec2& v, std::ostream* os) {
-  *os << "Vec2{" << v.x << ", " << v.y << "}";
-}
-}  // namespace calder
+#include "support/test_support.hpp"
 
 namespace {
 
@@ -30,22 +24,9 @@ using calder::DistanceClamp;
 using calder::Error;
 using calder::MassProduct;
 using calder::Vec2;
+using calder::test::expect_error;
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-
-// Asserts that f throws calder::Error whose message contains every needle.
-template <typename F>
-void expect_error(F f, std::initializer_list<const char*> needles) {
-  try {
-    f();
-    ADD_FAILURE() << "expected calder::Error";
-  } catch (const Error& e) {
-    for (const char* needle : needles) {
-      EXPECT_NE(std::string(e.what()).find(needle), std::string::npos)
-          << "message \"" << e.what() << "\" lacks \"" << needle << "\"";
-    }
-  }
-}
 
 bool is_zero(Vec2 v) { return v.x == 0.0 && v.y == 0.0; }
 

@@ -20,13 +20,7 @@
 #include "calder/forces.hpp"
 #include "calder/vec2.hpp"
 #include "calder/world.hpp"
-
-namespace calder {
-// Readable failure messages (internal linkage: other test files may have their own).
-[[maybe_unused]] static void PrintTo(const Vec2& v, std::ostream* os) {
-  *os << "Vec2{" << v.x << ", " << v.y << "}";
-}
-}  // namespace calder
+#include "support/test_support.hpp"
 
 namespace {
 

@@ -20,13 +20,7 @@
 #include "calder/error.hpp"
 #include "calder/random.hpp"
 #include "calder/vec2.hpp"
-
-namespace calder {
-// Readable failure messages (internal linkage: other test files may have their own).
-[[maybe_unused]] static void PrintTo(const Vec2& v, std::ostream* os) {
-  *os << "Vec2{" << v.x << ", " << v.y << "}";
-}
-}  // namespace calder
+#include "support/test_support.hpp"
 
 namespace {
 
@@ -34,6 +28,7 @@ using calder::Error;
 using calder::Noise;
 using calder::Random;
 using calder::Vec2;
+using calder::test::expect_error;
 
 constexpr double kTwoPow32 = 4294967296.0;
 constexpr double kPi = 3.141592653589793;
@@ -55,17 +50,6 @@ std::vector<double> noise_table(std::uint32_t seed) {
   std::vector<double> table(4096);
   for (double& value : table) value = lcg.next();
   return table;
-}
-
-// Asserts that f throws calder::Error whose message contains `needle`.
-template <typename F>
-void expect_error(F f, const std::string& needle) {
-  try {
-    f();
-    ADD_FAILURE() << "expected calder::Error mentioning \"" << needle << "\"";
-  } catch (const Error& e) {
-    EXPECT_NE(std::string(e.what()).find(needle), std::string::npos) << e.what();
-  }
 }
 
 // ----------------------------------------------------------- random() ---

@@ -26,6 +26,7 @@
 #include <vector>
 
 #include "../src/render/quantize.hpp"
+#include "support/test_support.hpp"
 
 namespace {
 
@@ -433,12 +434,7 @@ TEST(RenderFiles, UnwritablePathThrowsNamingItAndLeavesNoFile) {
   Canvas canvas(100, 100);
   canvas.draw(World{}, RenderStyle{}, 1);
   const std::string missing = dir.file("no-such-folder/out.png");
-  try {
-    canvas.write_png(missing);
-    FAIL() << "no exception";
-  } catch (const calder::Error& e) {
-    EXPECT_NE(std::string(e.what()).find(missing), std::string::npos) << e.what();
-  }
+  calder::test::expect_error([&] { canvas.write_png(missing); }, missing);
   // A folder where the file should go: the rename fails after writing.
   ASSERT_EQ(::mkdir(dir.file("taken").c_str(), 0755), 0);
   EXPECT_THROW(canvas.write_png(dir.file("taken")), calder::Error);

@@ -11,18 +11,13 @@
 #include "calder/error.hpp"
 #include "calder/random.hpp"
 #include "calder/vec2.hpp"
-
-namespace calder {
-// Readable failure messages (internal linkage: other test files may have their own).
-[[maybe_unused]] static void PrintTo(const Vec2& v, std::ostream* os) {
-  *os << "Vec2{" << v.x << ", " << v.y << "}";
-}
-}  // namespace calder
+#include "support/test_support.hpp"
 
 namespace {
 
 using calder::Error;
 using calder::Vec2;
+using calder::test::expect_error;
 
 constexpr double kPi = 3.141592653589793;
 
@@ -46,17 +41,6 @@ constexpr Vec2 chained() {
   return v;
 }
 static_assert(chained() == Vec2{5.0, 9.0});
-
-// Asserts that f throws calder::Error whose message contains `needle`.
-template <typename F>
-void expect_error(F f, const std::string& needle) {
-  try {
-    f();
-    ADD_FAILURE() << "expected calder::Error mentioning \"" << needle << "\"";
-  } catch (const Error& e) {
-    EXPECT_NE(std::string(e.what()).find(needle), std::string::npos) << e.what();
-  }
-}
 
 // ------------------------------------------------------ arithmetic ---
 

@@ -23,13 +23,7 @@
 #include "calder/trajectory.hpp"
 #include "calder/vec2.hpp"
 #include "calder/world.hpp"
-
-namespace calder {
-// Readable failure messages (internal linkage: other test files may have their own).
-[[maybe_unused]] static void PrintTo(const Vec2& v, std::ostream* os) {
-  *os << "Vec2{" << v.x << ", " << v.y << "}";
-}
-}  // namespace calder
+#include "support/test_support.hpp"
 
 namespace {
 
@@ -46,25 +40,13 @@ using calder::UpdateOrder;
 using calder::Vec2;
 using calder::World;
 using calder::WorldDef;
+using calder::test::expect_error;
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
 // Asserts that f throws calder::Error whose message contains every needle
 // (the function's name and the offending field).
-template <typename F>
-void expect_error(F f, std::initializer_list<const char*> needles) {
-  try {
-    f();
-    ADD_FAILURE() << "expected calder::Error";
-  } catch (const Error& e) {
-    for (const char* needle : needles) {
-      EXPECT_NE(std::string(e.what()).find(needle), std::string::npos)
-          << "message \"" << e.what() << "\" lacks \"" << needle << "\"";
-    }
-  }
-}
-
 bool finite_state(const World& w) {
   const calder::BodyView b = w.bodies();
   for (std::size_t i = 0; i < b.size(); ++i) {

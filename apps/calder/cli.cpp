@@ -2,9 +2,6 @@
 #include "cli.hpp"
 
 #include <CLI/CLI.hpp>
-#include <csignal>
-#include <exception>
-#include <new>
 #include <sstream>
 #include <string>
 #include <string_view>
@@ -12,7 +9,6 @@
 
 #include "calder/error.hpp"
 #include "errors.hpp"
-#include "progress.hpp"
 #include "render_command.hpp"
 #include "run_command.hpp"
 #include "window_command.hpp"
@@ -23,23 +19,34 @@
 
 namespace calder::app {
 
-std::string one_line(std::string message) {
-  for (char& c : message) {
-    if (c == '\n' || c == '\r') c = ' ';
-  }
-  while (!message.empty() && message.back() == ' ') message.pop_back();
-  // Whatever reached the message: no control characters reach the terminal.
-  return detail::printable(message, 1000);
-}
-
 namespace {
 
-int report(std::ostream& err, std::string message, int code) {
-  // One "calder: " prefix, however the message was put together.
-  while (message.rfind("calder: ", 0) == 0) message.erase(0, 8);
-  err << "calder: " << one_line(message) << '\n';
-  err.flush();
-  return code;
+// A CLI11 parse error (not --help or --version) as the one-line message: what
+// went wrong and which --help to read.
+std::string usage_message(const CLI::ParseError& e, const CLI::App& app, int argc,
+                          const char* const* argv) {
+  const std::vector<std::string> verbs = {"run", "render", "window"};
+  std::string hint = "see 'calder --help'";
+  bool no_command = !app.get_subcommand("list")->parsed();
+  for (const std::string& verb : verbs) {
+    if (app.get_subcommand(verb)->parsed()) {
+      hint = "see 'calder " + verb + " --help'";
+      no_command = false;
+    }
+  }
+  std::string what = e.what();
+  if (dynamic_cast<const CLI::RequiredError*>(&e) != nullptr && argc <= 1) {
+    what = "a command is required: list, run, render or window";
+  }
+  if (no_command && argc > 1 && argv[1][0] != '-') {
+    const std::vector<std::string_view> commands = {"list", "run", "render", "window"};
+    what = "unknown command '" + detail::printable(argv[1]) + "'";
+    if (const auto near = detail::closest(argv[1], commands)) {
+      what += " (did you mean '" + std::string(*near) + "'?)";
+    }
+    what += "; the commands are list, run, render and window";
+  }
+  return what + " (" + hint + ")";
 }
 
 }  // namespace
@@ -60,39 +67,17 @@ int main(int argc, const char* const* argv, std::ostream& out, std::ostream& err
   WindowOptions window_options;
   CLI::App* window = add_window_command(app, window_options);
 
-  try {
+  return run_cli("calder", out, err, [&] {
     try {
       app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
-      if (e.get_exit_code() == static_cast<int>(CLI::ExitCodes::Success)) {
-        // --help, --help-all, --version: to `out`, exit 0.
-        std::ostringstream help_err;
-        app.exit(e, out, help_err);
-        out.flush();
-        if (!out) return report(err, "standard output: write failed", exit_failure);
-        return exit_success;
+      if (e.get_exit_code() != static_cast<int>(CLI::ExitCodes::Success)) {
+        throw InputError(usage_message(e, app, argc, argv));
       }
-      std::string hint = "see 'calder --help'";
-      if (run->parsed()) hint = "see 'calder run --help'";
-      if (render->parsed()) hint = "see 'calder render --help'";
-      if (window->parsed()) hint = "see 'calder window --help'";
-      std::string what = e.what();
-      if (dynamic_cast<const CLI::RequiredError*>(&e) != nullptr && argc <= 1) {
-        what = "a command is required: list, run, render or window";
-      }
-      const bool no_command = !run->parsed() && !render->parsed() && !window->parsed() &&
-                              !app.get_subcommand("list")->parsed();
-      if (no_command && argc > 1 && argv[1][0] != '-') {
-        const std::vector<std::string_view> commands = {"list", "run", "render", "window"};
-        what = "unknown command '" + detail::printable(argv[1]) + "'";
-        if (const auto near = detail::closest(argv[1], commands)) {
-          what += " (did you mean '" + std::string(*near) + "'?)";
-        }
-        what += "; the commands are list, run, render and window";
-      }
-      return report(err, what + " (" + hint + ")", exit_usage);
+      std::ostringstream help_err;
+      app.exit(e, out, help_err);  // --help, --help-all, --version: to `out`, exit 0
+      return;
     }
-
     if (run->parsed()) {
       run_command(run_options, out, err);
     } else if (render->parsed()) {
@@ -102,24 +87,7 @@ int main(int argc, const char* const* argv, std::ostream& out, std::ostream& err
     } else {
       print_scene_list(out);
     }
-    out.flush();
-    if (!out) return report(err, "standard output: write failed", exit_failure);
-    return exit_success;
-  } catch (const InputError& e) {
-    return report(err, e.what(), exit_usage);
-  } catch (const Error& e) {  // calder::SceneFileError and other bad input
-    return report(err, e.what(), exit_usage);
-  } catch (const Interrupted& e) {
-    // The reader of a pipe went away (`calder run ... | head`): nothing to report.
-    if (e.signal_number() == SIGPIPE) return e.exit_code();
-    return report(err, e.what(), e.exit_code());
-  } catch (const RunError& e) {
-    return report(err, e.what(), exit_failure);
-  } catch (const std::bad_alloc&) {
-    return report(err, "out of memory", exit_failure);
-  } catch (const std::exception& e) {
-    return report(err, e.what(), exit_failure);
-  }
+  });
 }
 
 }  // namespace calder::app

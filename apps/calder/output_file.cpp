@@ -74,11 +74,7 @@ OutputFile::OutputFile(std::string path) : path_(std::move(path)) {
     throw InputError(path_ + ": cannot create the file: directory '" + directory.string() +
                      "' does not exist");
   }
-  try {
-    file_.emplace("", path_);
-  } catch (const calder::Error& e) {
-    throw InputError(e.what());
-  }
+  file_.emplace("", path_);  // a path that can't be created: bad input (exit 2)
   if (!file_->temp_path().empty()) watch_signals(file_->temp_path());
   buffer_ = std::make_unique<Buffer>(*file_);
   out_ = std::make_unique<std::ostream>(buffer_.get());

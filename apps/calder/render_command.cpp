@@ -163,7 +163,7 @@ void draw(Canvas& canvas, const Simulation& simulation, const RenderStyle& style
   try {
     canvas.draw(simulation.world(), simulation.scene(), style, simulation.frame());
   } catch (const Error& e) {
-    throw RunError(source + ": frame " + std::to_string(simulation.frame()) + ": " + e.what());
+    throw_run_failure(e, source, simulation.frame());
   }
 }
 
@@ -199,7 +199,7 @@ RenderStyle make_style(const Scene& scene, const StyleOptions& options) {
   try {
     style.validate();
   } catch (const Error& e) {
-    throw InputError(scene.name + ": " + e.what());
+    rethrow_with_context(e, scene.name + ": ");
   }
   return style;
 }
@@ -207,7 +207,8 @@ RenderStyle make_style(const Scene& scene, const StyleOptions& options) {
 double parse_scale(const std::string& flag, const std::string& text) {
   const std::optional<double> value = to_double(text);
   if (!value || !(*value > 0.0 && *value <= max_scale)) {
-    throw InputError(flag + ": expected a number > 0 and <= 8, got " + quoted(text));
+    throw InputError(flag + ": expected a number > 0 and <= " + detail::format_number(max_scale) +
+                     ", got " + quoted(text));
   }
   return *value;
 }
@@ -300,7 +301,8 @@ CLI::App* add_render_command(CLI::App& app, RenderOptions& options) {
       ->type_name("WxH");
   render
       ->add_option("--scale", options.scale,
-                   "Pixel density in (0, 8] (default 1; 2 gives the book's 1280x480 figures)")
+                   "Pixel density in (0, " + detail::format_number(max_scale) +
+                       "] (default 1; 2 gives the book's 1280x480 figures)")
       ->type_name("S");
   render->add_option("--fps", options.fps, "GIF frames per second, 0.01 to 100 (default 30)")
       ->type_name("F");
@@ -309,23 +311,21 @@ CLI::App* add_render_command(CLI::App& app, RenderOptions& options) {
                    "No progress bar and no report of what was written");
   render->footer(
       "Frame 0 is the state after setup. --frames is at most 100000, and at most 10000 frames are "
-      "written (frames / every + 1). Each side of the image, after --scale, is 1 to 8192 pixels.\n"
+      "written (frames / every + 1). Each side of the image, after --scale, is 1 to " +
+      std::to_string(max_image_side) +
+      " pixels.\n"
       "A progress bar is shown on standard error when it is a terminal.\n"
       "Exit status: 0 success, 1 the run or a write failed (the files it wrote are removed), 2 bad "
       "usage, bad input or an output path that can't be written.\n");
   return render;
 }
 
-void render_command(const RenderOptions& options, std::ostream& out, std::ostream& err) {
-  if (!options.png && !options.gif) {
-    throw InputError("render: no output chosen: give --png DIR and/or --gif FILE");
-  }
-  const std::int64_t every = options.every ? parse_every(*options.every) : 1;
-  const double fps = options.fps ? parse_fps(*options.fps) : 30.0;
-  if (options.scale) (void)parse_scale("--scale", *options.scale);
-  if (options.gif) check_output_path("--gif", *options.gif);
+namespace {
 
-  const PreparedInput input = prepare_input(options.input);
+// Throws InputError when the run draws more frames, or writes more images,
+// than render's limits.
+void check_render_frames(const PreparedInput& input, const RenderOptions& options,
+                         std::int64_t every) {
   const std::int64_t frames = input.scene.frames;
   if (frames > max_render_frames) {
     if (options.input.frames) {
@@ -343,6 +343,37 @@ void render_command(const RenderOptions& options, std::ostream& out, std::ostrea
                      " images, more than " + std::to_string(max_output_frames) +
                      " (use a larger --every or fewer --frames)");
   }
+}
+
+// What render wrote, one line per output (null: not chosen).
+void report_written(std::ostream& out, const Canvas& canvas, std::int64_t frames,
+                    const PngFolder* png, const GifWriter* gif, double fps) {
+  const std::string what = std::to_string(frames) + (frames == 1 ? " frame" : " frames") + " of " +
+                           size_text(canvas) + " pixels";
+  if (png != nullptr) {
+    out << "wrote " << png->name(0);
+    if (png->count() > 1) out << " to " << png->name(png->count() - 1);
+    out << " in " << png->dir() << " (" << what << ")\n";
+  }
+  if (gif != nullptr) {
+    out << "wrote " << gif->path() << " (" << what << " at " << format_number(fps) << " fps)\n";
+  }
+}
+
+}  // namespace
+
+void render_command(const RenderOptions& options, std::ostream& out, std::ostream& err) {
+  if (!options.png && !options.gif) {
+    throw InputError("render: no output chosen: give --png DIR and/or --gif FILE");
+  }
+  const std::int64_t every = options.every ? parse_every(*options.every) : 1;
+  const double fps = options.fps ? parse_fps(*options.fps) : 30.0;
+  if (options.scale) (void)parse_scale("--scale", *options.scale);
+  if (options.gif) check_output_path("--gif", *options.gif);
+
+  const PreparedInput input = prepare_input(options.input);
+  const std::int64_t frames = input.scene.frames;
+  check_render_frames(input, options, every);
   const CanvasSize size = canvas_size(options.size, options.scale, input.scene);
   const RenderStyle style = make_style(input.scene, options.style);
   Simulation simulation = start_simulation(input);
@@ -351,18 +382,14 @@ void render_command(const RenderOptions& options, std::ostream& out, std::ostrea
   try {
     canvas.emplace(size.width, size.height, size.scale);
   } catch (const Error& e) {
-    throw InputError(std::string("--size/--scale: ") + e.what());
+    rethrow_with_context(e, "--size/--scale: ");
   }
   // From here on a terminating signal only sets a flag: the run stops at the
   // next frame and the destructors remove the GIF's temporary and the staged frames.
   const InterruptGuard interrupt;
   std::optional<GifWriter> gif;
   if (options.gif) {
-    try {
-      gif.emplace(*options.gif, canvas->pixel_width(), canvas->pixel_height(), fps);
-    } catch (const Error& e) {
-      throw InputError(e.what());
-    }
+    gif.emplace(*options.gif, canvas->pixel_width(), canvas->pixel_height(), fps);
   }
   std::optional<PngFolder> png;
   if (options.png) png.emplace(*options.png);
@@ -403,17 +430,8 @@ void render_command(const RenderOptions& options, std::ostream& out, std::ostrea
   if (png) png->commit();
   progress.finish();
 
-  if (!options.quiet) {
-    const std::string what = std::to_string(index) + (index == 1 ? " frame" : " frames") + " of " +
-                             size_text(*canvas) + " pixels";
-    if (png) {
-      out << "wrote " << png->name(0);
-      if (png->count() > 1) out << " to " << png->name(png->count() - 1);
-      out << " in " << png->dir() << " (" << what << ")\n";
-    }
-    if (gif)
-      out << "wrote " << gif->path() << " (" << what << " at " << format_number(fps) << " fps)\n";
-  }
+  if (!options.quiet)
+    report_written(out, *canvas, index, png ? &*png : nullptr, gif ? &*gif : nullptr, fps);
 }
 
 }  // namespace calder::app

@@ -29,8 +29,8 @@ namespace calder::app {
 // Limits of `calder render`.
 constexpr std::int64_t max_render_frames = 100'000;  // --frames
 constexpr std::int64_t max_output_frames = 10'000;   // PNG files or GIF frames
-constexpr int max_image_side = 8192;                 // pixels, after --scale
-constexpr double max_scale = 8.0;                    // --scale in (0, 8]
+constexpr int max_image_side = Canvas::max_side;     // pixels, after --scale
+constexpr double max_scale = Canvas::max_scale;      // --scale in (0, max_scale]
 constexpr double min_fps = 0.01;                     // --fps
 constexpr double max_fps = 100.0;
 

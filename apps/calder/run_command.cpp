@@ -19,11 +19,6 @@ namespace calder::app {
 
 namespace {
 
-bool ends_with(const std::string& s, const std::string& suffix) {
-  return s.size() >= suffix.size() &&
-         s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
-}
-
 template <class Writer>
 void write_run(Simulation& simulation, const PreparedInput& input, Writer& writer, OutputFile& file,
                const std::ostream& stream, const std::function<void(std::int64_t)>& after_frame) {
@@ -74,7 +69,7 @@ TrajectoryFormat trajectory_format(const std::optional<std::string>& format,
   std::string lower = path;
   std::transform(lower.begin(), lower.end(), lower.begin(),
                  [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return ends_with(lower, ".json") ? TrajectoryFormat::json : TrajectoryFormat::csv;
+  return lower.ends_with(".json") ? TrajectoryFormat::json : TrajectoryFormat::csv;
 }
 
 void check_trajectory_rows(std::int64_t frames, std::size_t bodies) {
@@ -94,8 +89,7 @@ void run_frames(Simulation& simulation, std::int64_t frames, const std::string& 
     try {
       simulation.step();
     } catch (const Error& e) {
-      throw RunError(source + ": frame " + std::to_string(simulation.frame() + 1) + ": " +
-                     e.what());
+      throw_run_failure(e, source, simulation.frame() + 1);
     }
     if (after_step) after_step(simulation.frame());
   }

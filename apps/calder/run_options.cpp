@@ -17,6 +17,41 @@
 
 namespace calder::app {
 
+namespace {
+
+// The input flags whose value changes the scene, each written once: its name,
+// the placeholder of its value, its help, where CLI11 puts its text, and how
+// that text is checked and applied (throwing InputError that names the flag).
+// A new flag of this kind is a row here and its text in InputOptions.
+struct SceneFlag {
+  const char* name;
+  const char* type_name;
+  const char* help;
+  std::optional<std::string> InputOptions::*text;
+  void (*apply)(const std::string& flag, const std::string& text, Scene& scene);
+};
+
+const SceneFlag kSceneFlags[] = {
+    {"--frames", "N", "Frames to run, 0 to 10000000 (default: the scene's)", &InputOptions::frames,
+     [](const std::string& flag, const std::string& text, Scene& scene) {
+       scene.frames = parse_frames(flag, text);
+     }},
+    {"--dt", "X", "Time step, a number > 0 (default: the scene's)", &InputOptions::dt,
+     [](const std::string& flag, const std::string& text, Scene& scene) {
+       scene.world.dt = parse_dt(flag, text);
+     }},
+    {"--mouse", "X,Y",
+     "The mouse stays at X,Y for the whole run (replaces the scene's scripted mouse position and "
+     "moves)",
+     &InputOptions::mouse,
+     [](const std::string& flag, const std::string& text, Scene& scene) {
+       scene.input.mouse = parse_point(flag, text);
+       scene.input.moves.clear();
+     }},
+};
+
+}  // namespace
+
 void add_input_options(CLI::App& command, InputOptions& options) {
   command
       .add_option("scene", options.scene,
@@ -24,11 +59,9 @@ void add_input_options(CLI::App& command, InputOptions& options) {
                   "names an existing file, ends in .toml or contains a '/' is read as a file")
       ->required()
       ->type_name("SCENE|FILE");
-  command
-      .add_option("--frames", options.frames, "Frames to run, 0 to 10000000 (default: the scene's)")
-      ->type_name("N");
-  command.add_option("--dt", options.dt, "Time step, a number > 0 (default: the scene's)")
-      ->type_name("X");
+  for (const SceneFlag& flag : kSceneFlags) {
+    command.add_option(flag.name, options.*flag.text, flag.help)->type_name(flag.type_name);
+  }
   command
       .add_option("--seed", options.seed,
                   "Random seed, 0 to 4294967295, replacing the scene's (default: the scene's)")
@@ -47,11 +80,6 @@ void add_input_options(CLI::App& command, InputOptions& options) {
       ->type_name("A-B")
       ->allow_extra_args(false)  // one range per flag: `--mouse-pressed 1-2 SCENE` stays clear
       ->take_all();
-  command
-      .add_option("--mouse", options.mouse,
-                  "The mouse stays at X,Y for the whole run (replaces the scene's scripted "
-                  "mouse position and moves)")
-      ->type_name("X,Y");
   command.add_flag("--no-work-limit", options.no_work_limit,
                    "Run even when the work (bodies^2 x frames with mutual attraction, bodies x "
                    "frames otherwise) is over the budget of 10^12");
@@ -83,8 +111,11 @@ void check_work_budget(const Scene& scene, std::size_t bodies, const std::string
 
 InputFlags parse_input_flags(const InputOptions& options) {
   InputFlags flags;
-  if (options.frames) flags.frames = parse_frames("--frames", *options.frames);
-  if (options.dt) flags.dt = parse_dt("--dt", *options.dt);
+  Scene checked;  // the scene flags are checked before the scene is read
+  for (const SceneFlag& flag : kSceneFlags) {
+    if (options.*flag.text) flag.apply(flag.name, *(options.*flag.text), checked);
+  }
+  flags.options = &options;
   if (options.seed) flags.seed = parse_seed("--seed", *options.seed);
   if (!options.mouse_pressed.empty()) {
     std::vector<FrameRange> ranges;
@@ -93,7 +124,6 @@ InputFlags parse_input_flags(const InputOptions& options) {
     }
     flags.mouse_pressed = std::move(ranges);
   }
-  if (options.mouse) flags.mouse = parse_point("--mouse", *options.mouse);
   if (options.state) {
     if (options.state->empty()) throw InputError("--state: the file name is empty");
     flags.state_path = *options.state;
@@ -102,13 +132,12 @@ InputFlags parse_input_flags(const InputOptions& options) {
 }
 
 void apply_input_flags(const InputFlags& flags, Scene& scene) {
-  if (flags.frames) scene.frames = *flags.frames;
-  if (flags.dt) scene.world.dt = *flags.dt;
-  if (flags.mouse_pressed) scene.input.mouse_pressed = *flags.mouse_pressed;
-  if (flags.mouse) {
-    scene.input.mouse = *flags.mouse;
-    scene.input.moves.clear();
+  if (flags.options != nullptr) {
+    for (const SceneFlag& flag : kSceneFlags) {
+      if (flags.options->*flag.text) flag.apply(flag.name, *(flags.options->*flag.text), scene);
+    }
   }
+  if (flags.mouse_pressed) scene.input.mouse_pressed = *flags.mouse_pressed;
 }
 
 std::vector<BodyDef> bodies_from_state(const std::vector<StateRow>& rows, const Scene& scene) {
@@ -166,13 +195,13 @@ Simulation start_simulation(const PreparedInput& input) {
   try {
     simulation.emplace(input.scene, input.seed);
   } catch (const Error& e) {
-    throw InputError(input.source + ": " + e.what());
+    rethrow_with_context(e, input.source + ": ");
   }
   if (input.bodies) {
     try {
       simulation->set_bodies(*input.bodies);
     } catch (const Error& e) {
-      throw InputError(*input.state_path + ": " + e.what());
+      rethrow_with_context(e, *input.state_path + ": ");
     }
   }
   return std::move(*simulation);

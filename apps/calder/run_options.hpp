@@ -1,18 +1,9 @@
 // SPDX-License-Identifier: MIT
 // calder command: the input flags shared by the verbs that run a scene
-// (`calder run`, and later `calder render`), and how they change a Scene.
-//
-//   SCENE|FILE              a built-in scene name, or a .toml scene file
-//   --frames N              frames to run, 0..10^7 (default: the scene's)
-//   --dt X                  time step > 0 (default: the scene's)
-//   --seed S                the random seed, 0..2^32-1 (default: the scene's)
-//   --state FILE            CSV x,y,vx,vy,mass[,radius]: replaces the bodies after setup
-//   --mouse-pressed A-B     frames A..B (1-based draw numbers, inclusive) with the
-//                           mouse held; repeatable; replaces the scene's scripted
-//                           presses; "none" clears them
-//   --mouse X,Y             the mouse stays at X,Y for the whole run (replaces the
-//                           scene's scripted mouse position and moves)
-//   --no-work-limit         run even when the work is over max_run_work
+// (`calder run`, `calder render`, `calder window`), and how they change a
+// Scene. Their names and help are written once, in run_options.cpp (the flags
+// that change the scene are rows of one table there): `calder run --help`
+// shows them, apps/README.md documents them.
 //
 // A verb adds them with add_input_options(), and after parsing turns them into
 // a ready Simulation with prepare_input() and start_simulation().
@@ -62,11 +53,9 @@ void add_input_options(CLI::App& command, InputOptions& options);
 
 // The input flags, checked and converted.
 struct InputFlags {
-  std::optional<std::int64_t> frames;
-  std::optional<double> dt;
+  const InputOptions* options = nullptr;  // the texts of the flags that change the scene
   std::optional<std::uint32_t> seed;
   std::optional<std::vector<FrameRange>> mouse_pressed;  // set: replaces the scene's
-  std::optional<Vec2> mouse;
   std::optional<std::string> state_path;
 };
 
@@ -74,8 +63,9 @@ struct InputFlags {
 // Throws InputError naming the flag.
 InputFlags parse_input_flags(const InputOptions& options);
 
-// Applies --frames, --dt, --mouse-pressed and --mouse to a scene (--seed goes
-// to the Simulation, --state replaces the bodies after setup).
+// Applies the flags that change the scene (--frames, --dt, --mouse, ...: the
+// table in run_options.cpp) and --mouse-pressed to it (--seed goes to the
+// Simulation, --state replaces the bodies after setup).
 void apply_input_flags(const InputFlags& flags, Scene& scene);
 
 // A scene with the flags applied, and what replaces its seed and bodies.

@@ -18,11 +18,6 @@ namespace calder::app {
 
 namespace {
 
-bool ends_with(const std::string& s, const std::string& suffix) {
-  return s.size() >= suffix.size() &&
-         s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
-}
-
 // The .toml files of the current folder (at most the first 1000 entries looked at).
 std::vector<std::string> scene_files_here() {
   std::vector<std::string> files;
@@ -31,7 +26,7 @@ std::vector<std::string> scene_files_here() {
   for (std::filesystem::directory_iterator it(".", ec), end; !ec && it != end && looked < 1000;
        it.increment(ec), ++looked) {
     const std::string name = it->path().filename().string();
-    if (ends_with(name, ".toml") && name.size() <= 64) files.push_back(name);
+    if (name.ends_with(".toml") && name.size() <= 64) files.push_back(name);
   }
   return files;
 }
@@ -40,7 +35,7 @@ std::vector<std::string> scene_files_here() {
 
 bool names_scene_file(const std::string& argument) {
   std::error_code ec;
-  return std::filesystem::exists(argument, ec) || ends_with(argument, ".toml") ||
+  return std::filesystem::exists(argument, ec) || argument.ends_with(".toml") ||
          argument.find('/') != std::string::npos;
 }
 

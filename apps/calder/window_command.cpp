@@ -416,8 +416,7 @@ void WindowApp::step_once() {
       simulation_.step(input);
     }
   } catch (const Error& e) {
-    throw RunError(input_.source + ": frame " + std::to_string(simulation_.frame() + 1) + ": " +
-                   e.what());
+    throw_run_failure(e, input_.source, simulation_.frame() + 1);
   }
   pending_press_ = false;
   canvas_current_ = false;
@@ -442,8 +441,7 @@ void WindowApp::draw() {
   try {
     canvas_.draw(simulation_.world(), simulation_.scene(), style_, simulation_.frame());
   } catch (const Error& e) {
-    throw RunError(input_.source + ": frame " + std::to_string(simulation_.frame()) + ": " +
-                   e.what());
+    throw_run_failure(e, input_.source, simulation_.frame());
   }
   canvas_current_ = true;
   texture_current_ = false;
@@ -558,7 +556,8 @@ CLI::App* add_window_command(CLI::App& app, WindowOptions& options) {
       ->description("Close the window after N steps, 0 to 10000000 (default: run until quit)");
   window
       ->add_option("--scale", options.scale,
-                   "Window pixels per canvas pixel, in (0, 8] (default 1)")
+                   "Window pixels per canvas pixel, in (0, " +
+                       detail::format_number(Canvas::max_scale) + "] (default 1)")
       ->type_name("S");
   window
       ->add_option("--speed", options.speed,

@@ -1,9 +1,18 @@
 // SPDX-License-Identifier: MIT
-// calder: errors.
+// calder: errors, by kind.
 //
-// Every rejected argument (mass <= 0, dt <= 0, NaN or infinite input, ...)
-// throws calder::Error with a one-line message naming the function, the
-// argument and the offending value. Nothing is ever turned into NaN silently.
+// Every error calder throws is a calder::Error (catch it to catch them all),
+// with a one-line message. Its kind says whose fault it is, so that a program
+// (the calder command) maps kinds to exit codes in one place:
+//   InvalidArgument  a function refused an argument (mass <= 0, dt <= 0, NaN or
+//                    infinite input, ...): the message names the function, the
+//                    argument and the offending value;
+//   InputError       bad input read from outside (a scene file, a --state file,
+//                    a flag): the message names the file, line or field;
+//   RunError         a run that failed after it started (a step left a
+//                    non-finite state, a write failed).
+// A plain Error is bad input or a bad argument too. Nothing is ever turned
+// into NaN silently.
 #pragma once
 
 #include <cstddef>
@@ -20,9 +29,32 @@ class Error : public std::invalid_argument {
   using std::invalid_argument::invalid_argument;
 };
 
+// A function refused one of its arguments.
+class InvalidArgument : public Error {
+ public:
+  using Error::Error;
+};
+
+// Bad input from outside: a file, a line, a field or a flag.
+class InputError : public Error {
+ public:
+  using Error::Error;
+};
+
+// A run that failed after it started (a non-finite state, a failed write).
+class RunError : public Error {
+ public:
+  using Error::Error;
+};
+
+// Throws an error of the same kind as `error` (InvalidArgument, InputError,
+// RunError or Error) whose message is `context` followed by error's: for a
+// catch site that only adds where it happened, and leaves the kind alone.
+[[noreturn]] void rethrow_with_context(const Error& error, std::string_view context);
+
 namespace detail {
 
-// Throws Error("<where>: <what> must be finite (got <value>)") unless value is finite.
+// Throws InvalidArgument("<where>: <what> must be finite (got <value>)") unless value is finite.
 void require_finite(double value, const char* where, const char* what);
 // Throws unless value is finite and > 0.
 void require_positive(double value, const char* where, const char* what);

@@ -150,6 +150,9 @@ RenderStyle book_style(const Scene& scene, BookLook look = BookLook::sketch);
 // (a moved-from canvas may only be destroyed or assigned to), not copyable.
 class Canvas {
  public:
+  static constexpr int max_side = 8192;     // pixels a side, once scaled
+  static constexpr double max_scale = 8.0;  // scale in (0, max_scale]
+
   // width and height in canvas pixels (the sketch's createCanvas), scale in
   // (0, 8] (p5's pixelDensity). Throws calder::Error unless each side is
   // 1..8192 pixels once scaled.

@@ -26,8 +26,6 @@ namespace calder {
 
 namespace {
 
-constexpr int kMaxPixels = 8192;
-constexpr double kMaxScale = 8.0;
 constexpr double kPi = 3.14159265358979323846;
 
 void set_color(cairo_t* cr, const Color& c) { cairo_set_source_rgba(cr, c.r, c.g, c.b, c.a); }
@@ -285,15 +283,16 @@ struct Canvas::Impl {
 };
 
 Canvas::Canvas(int width, int height, double scale) : impl_(std::make_unique<Impl>()) {
-  if (!(std::isfinite(scale) && scale > 0.0 && scale <= kMaxScale)) {
-    throw Error("Canvas: scale must be in (0, 8] (got " + detail::format_number(scale) + ")");
+  if (!(std::isfinite(scale) && scale > 0.0 && scale <= max_scale)) {
+    throw Error("Canvas: scale must be in (0, " + detail::format_number(max_scale) + "] (got " +
+                detail::format_number(scale) + ")");
   }
   const double pw = std::round(static_cast<double>(width) * scale);
   const double ph = std::round(static_cast<double>(height) * scale);
-  if (width < 1 || height < 1 || pw < 1.0 || ph < 1.0 || pw > kMaxPixels || ph > kMaxPixels) {
-    throw Error("Canvas: size must be 1..8192 pixels a side once scaled (got " +
-                std::to_string(width) + " x " + std::to_string(height) + " at scale " +
-                detail::format_number(scale) + ")");
+  if (width < 1 || height < 1 || pw < 1.0 || ph < 1.0 || pw > max_side || ph > max_side) {
+    throw Error("Canvas: size must be 1.." + std::to_string(max_side) +
+                " pixels a side once scaled (got " + std::to_string(width) + " x " +
+                std::to_string(height) + " at scale " + detail::format_number(scale) + ")");
   }
   Impl& d = *impl_;
   d.width = width;

@@ -9,9 +9,12 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <new>
 #include <nlohmann/json.hpp>
 #include <sstream>
+#include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "calder/calder.hpp"
@@ -361,4 +364,43 @@ TEST(CliMain, RuntimeFailureExits1) {
   EXPECT_EQ(r.status, 1);
   EXPECT_EQ(r.err.rfind("calder: example-2.8: frame 1: ", 0), 0u) << r.err;
   EXPECT_EQ(dir.entries(), std::vector<std::string>{"state.csv"});
+}
+
+// --- run_cli: the one top level of calder and calder-bench ---------------------------
+
+namespace {
+
+// run_cli's exit status and stderr when the command throws `error`.
+template <typename Throw>
+std::pair<int, std::string> run_cli_with(Throw&& throw_it) {
+  std::ostringstream out;
+  std::ostringstream err;
+  const int status = calder::app::run_cli("prog", out, err, throw_it);
+  return {status, err.str()};
+}
+
+}  // namespace
+
+TEST(CliRunCli, MapsEachKindToItsExitCode) {
+  using calder::app::exit_failure;
+  using calder::app::exit_usage;
+  const auto usage = run_cli_with([] { throw calder::InputError("prog: a.toml:3: bad\nkey"); });
+  EXPECT_EQ(usage, std::make_pair(exit_usage, std::string("prog: a.toml:3: bad key\n")));
+  EXPECT_EQ(run_cli_with([] { throw calder::InvalidArgument("mass"); }).first, exit_usage);
+  EXPECT_EQ(run_cli_with([] { throw calder::Error("plain"); }).first, exit_usage);
+  const auto failed = run_cli_with([] { throw calder::RunError("rain: frame 3: NaN"); });
+  EXPECT_EQ(failed, std::make_pair(exit_failure, std::string("prog: rain: frame 3: NaN\n")));
+  EXPECT_EQ(run_cli_with([] { throw std::bad_alloc(); }),
+            std::make_pair(exit_failure, std::string("prog: out of memory\n")));
+  EXPECT_EQ(run_cli_with([] { throw std::runtime_error("other"); }).first, exit_failure);
+  EXPECT_EQ(run_cli_with([] {}), std::make_pair(calder::app::exit_success, std::string()));
+}
+
+TEST(CliRunCli, AStepFailureIsARunFailureNamingSourceAndFrame) {
+  try {
+    calder::app::throw_run_failure(calder::InvalidArgument("body 2 is NaN"), "rain", 12);
+    ADD_FAILURE() << "expected RunError";
+  } catch (const calder::RunError& e) {
+    EXPECT_STREQ(e.what(), "rain: frame 12: body 2 is NaN");
+  }
 }

@@ -85,23 +85,23 @@ signal_midway() {
 
 case "$case_name" in
   # --- a crash on a small file ---------------------------------------------------
-  deep_dotted_key)
+  deep_dotted_key) # scene file
     { echo 'name = "deep"'; printf 'a%.0s.' $(seq 50000); echo 'a = 1'; } > deep.toml
     run_calder run deep.toml
     expect_error 2 "deep.toml:2:" "nested more than 32 deep"
     ;;
-  deep_table_header)
+  deep_table_header) # scene file
     { printf '['; printf 'a%.0s.' $(seq 50000); echo 'a]'; } > deep.toml
     run_calder run deep.toml
     expect_error 2 "deep.toml:1:" "nested more than 32 deep"
     ;;
-  deep_inline_tables)
+  deep_inline_tables) # scene file
     { printf 'x = '; printf '{ a = %.0s' $(seq 20000); echo; } > deep.toml
     run_calder run deep.toml
     expect_error 2 "deep.toml:1:" "nested more than 32 deep"
     ;;
   # --- unbounded time and memory ------------------------------------------------
-  huge_unknown_key)
+  huge_unknown_key) # scene file
     { echo 'name = "x"'; head -c 3000000 /dev/zero | tr '\0' q; echo ' = 1'; } > key.toml
     run_calder run key.toml
     expect_error 2 "key.toml:2:1:"
@@ -114,7 +114,7 @@ case "$case_name" in
     expect_error 2 "unknown key 'qqqq" "...'"
     [ "$(wc -c < err)" -lt 400 ] || fail "message of $(wc -c < err) characters"
     ;;
-  scene_dev_zero)
+  scene_dev_zero) # scene file
     run_calder run /dev/zero
     expect_error 2 "/dev/zero: not a regular file"
     expect_within 2000
@@ -123,7 +123,7 @@ case "$case_name" in
     expect_error 2 "scene.toml: not a regular file"
     expect_within 2000
     ;;
-  scene_too_big)
+  scene_too_big) # scene file
     { echo 'name = "x"'; for _ in $(seq 5); do head -c 1048576 /dev/zero | tr '\0' ' '; done; } > big.toml
     run_calder run big.toml
     expect_error 2 "big.toml: larger than 4 MiB"
@@ -289,7 +289,7 @@ case "$case_name" in
     expect_error 2 "no display"
     expect_within 5000
     ;;
-  escape_in_key)
+  escape_in_key) # scene file
     printf 'name = "x"\n"a\\u001b]0;title\\u0007b" = 1\n' > esc.toml
     run_calder run esc.toml
     expect_error 2 "unknown key 'a\\x1b]0;title\\x07b'"
@@ -306,7 +306,7 @@ case "$case_name" in
     run_calder run example-2.8 --state state.csv
     expect_error 2 "state.csv:2: y: '2\\x00zz' is not a number"
     ;;
-  unreachable_code_points)
+  unreachable_code_points) # scene file
     # toml++ 3.3.0 reaches __builtin_unreachable when it tests these for
     # whitespace: refused before it sees them; inside strings they are text.
     for text in 'x = \uFC00' '\uFEFE = 1' 'x = 1 \u3001'; do
@@ -343,7 +343,7 @@ case "$case_name" in
     run_calder run three
     expect_error 2 "unknown scene 'three' (did you mean 'three.toml'?)"
     ;;
-  key_after_table)
+  key_after_table) # scene file
     printf '[[bodies]]\nmass = 1\nposition = [1, 2]\nframes = 10\n' > after.toml
     run_calder run after.toml
     expect_error 2 "after.toml:4:1: unknown key 'frames' in [[bodies]]" \

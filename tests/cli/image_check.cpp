@@ -67,11 +67,6 @@ struct Usage : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-bool ends_with(const std::string& s, const std::string& suffix) {
-  return s.size() >= suffix.size() &&
-         s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
-}
-
 Image read_png(const std::string& path) {
   cairo_surface_t* surface = cairo_image_surface_create_from_png(path.c_str());
   if (cairo_surface_status(surface) != CAIRO_STATUS_SUCCESS) {
@@ -238,7 +233,7 @@ int main(int argc, char** argv) {
     ++failures;
   };
   try {
-    const Image image = ends_with(path, ".gif") ? read_gif(path) : read_png(path);
+    const Image image = path.ends_with(".gif") ? read_gif(path) : read_png(path);
     std::size_t frame = 0;
     double scale = 1.0;
     double pad = 0.0;
@@ -341,7 +336,7 @@ int main(int argc, char** argv) {
         if (i + 1 >= argc) throw Usage("missing the other image");
         const std::string other_path = argv[++i];
         const Image other =
-            ends_with(other_path, ".gif") ? read_gif(other_path) : read_png(other_path);
+            other_path.ends_with(".gif") ? read_gif(other_path) : read_png(other_path);
         if (other.width != image.width || other.height != image.height) {
           fail("is " + std::to_string(image.width) + "x" + std::to_string(image.height) + ", " +
                other_path + " is " + std::to_string(other.width) + "x" +

@@ -216,7 +216,7 @@ elseif(CASE STREQUAL "state")
   if(NOT out MATCHES "\nbodies +1\n")
     fail("--state with one row should give one body")
   endif()
-elseif(CASE STREQUAL "mouse_pressed_replaces")
+elseif(CASE STREQUAL "mouse_pressed_replaces") # scene file
   # A scene file's scripted presses, and --mouse-pressed replacing them.
   write(windy.toml "${windy_toml}")
   calder_run(run windy.toml --trajectory file.csv)
@@ -236,7 +236,7 @@ elseif(CASE STREQUAL "mouse_pressed_replaces")
              --trajectory b.csv)
   expect_success()
   expect_same_file(a.csv b.csv)
-elseif(CASE STREQUAL "scene_file_summary")
+elseif(CASE STREQUAL "scene_file_summary") # scene file
   write(windy.toml "${windy_toml}")
   calder_run(run windy.toml --frames 5 --seed 9 --dt 0.5)
   expect_success()
@@ -245,7 +245,7 @@ elseif(CASE STREQUAL "scene_file_summary")
       fail("the summary lacks a line '${label}'")
     endif()
   endforeach()
-elseif(CASE STREQUAL "scene_file")
+elseif(CASE STREQUAL "scene_file") # registered apart
   # A scene file of scenes/ runs; when a built-in scene has its name, both give
   # the same trajectory, byte for byte.
   get_filename_component(name "${SCENE_FILE}" NAME_WLE)
