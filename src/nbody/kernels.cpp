@@ -446,16 +446,15 @@ void run_blocks(const typename Scalar<V>::type* tx, const typename Scalar<V>::ty
 // target's pairs in source order: the same bits as run_blocks<V, 1>.
 template <typename V, std::size_t R, typename Sources>
 void run_group_blocks(const typename Scalar<V>::type* tx, const typename Scalar<V>::type* ty,
-                      const typename Scalar<V>::type* tx_lo,
-                      const typename Scalar<V>::type* ty_lo, std::size_t nt,
-                      const Sources& sources, double* out_x, double* out_y) {
+                      const typename Scalar<V>::type* tx_lo, const typename Scalar<V>::type* ty_lo,
+                      std::size_t nt, const Sources& sources, double* out_x, double* out_y) {
   constexpr std::size_t B = R * kLanes<V>;
   const std::size_t full = nt / B * B;
   if (full > 0) run_blocks<V, R>(tx, ty, tx_lo, ty_lo, full, sources, out_x, out_y);
   if (full == nt) return;
   const auto rest = [full](const auto* p) { return p == nullptr ? p : p + full; };
-  run_blocks<V, 1>(rest(tx), rest(ty), rest(tx_lo), rest(ty_lo), nt - full, sources,
-                   out_x + full, out_y + full);
+  run_blocks<V, 1>(rest(tx), rest(ty), rest(tx_lo), rest(ty_lo), nt - full, sources, out_x + full,
+                   out_y + full);
 }
 
 template <typename T>
@@ -540,9 +539,8 @@ template <typename T>
 void accumulate_multipole(const T* tx, const T* ty, std::size_t nt, const Nodes<T>& s,
                           const LawParams& p, double* out_x, double* out_y) {
   using V = typename VectorOf<T>::type;
-  run_group_blocks<V, kGroupBlockVectors>(tx, ty, nullptr, nullptr, nt,
-                                          MultipoleSources<V>{s, splat<V>(eps2_of<T>(p))}, out_x,
-                                          out_y);
+  run_group_blocks<V, kGroupBlockVectors>(
+      tx, ty, nullptr, nullptr, nt, MultipoleSources<V>{s, splat<V>(eps2_of<T>(p))}, out_x, out_y);
 }
 
 }  // namespace
