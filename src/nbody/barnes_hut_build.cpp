@@ -225,9 +225,10 @@ std::uint32_t BarnesHut::Workspace::split(bh::Tree& t, std::uint32_t index, std:
   // The quadrant digit below the common prefix: bits 2 (kBits - 1 - level) + {0, 1}.
   const int shift = 2 * (kBits - 1 - level);
   bounds[0] = begin;
+  const auto at = [&](std::uint32_t i) { return keys.begin() + static_cast<std::ptrdiff_t>(i); };
   for (std::uint64_t d = 1; d < 4; ++d) {
     bounds[d] = static_cast<std::uint32_t>(
-        std::partition_point(keys.begin() + bounds[d - 1], keys.begin() + end,
+        std::partition_point(at(bounds[d - 1]), at(end),
                              [&](std::uint64_t key) { return ((key >> shift) & 3u) < d; }) -
         keys.begin());
   }

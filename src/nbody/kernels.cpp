@@ -196,7 +196,7 @@ constexpr int kFloatEstimateSteps = 3;
 // last step): the last Newton step y (3 - r2 y^2) leaves out its factor 1/2,
 // which the caller folds into a constant (see kLastStepScale).
 template <typename V>
-constexpr typename Scalar<V>::type kLastStepScale = kNewtonSteps<V> > 0 ? 2 : 1;
+[[maybe_unused]] constexpr typename Scalar<V>::type kLastStepScale = kNewtonSteps<V> > 0 ? 2 : 1;
 
 template <typename V>
 [[gnu::always_inline]] inline V rsqrt_scaled(V r2) {
