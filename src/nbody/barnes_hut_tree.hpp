@@ -3,7 +3,8 @@
 //   barnes_hut_build.cpp    bounding square, Morton sort, the tree and its
 //                           moments (threads build subtrees of the Morton order)
 //   barnes_hut_moments.cpp  the moments as the multipole kernels read them
-//   barnes_hut_walk.cpp     per group: the tree walk and the kernels' sums
+//   barnes_hut_walk.cpp     per group: the tree walk, the kernels' sums and
+//                           the far field's interpolation
 //   barnes_hut.cpp          the public entry points, which run the steps
 #pragma once
 
@@ -82,6 +83,7 @@ template <typename T>
 struct Lists {
   Columns<T, 3> body;                           // x, y, m
   Columns<T, detail::Nodes<T>::kColumns> node;  // x, y, then the kMoments moments
+  Columns<T, detail::Nodes<T>::kColumns> far;   // the same, interpolated over the group
   std::vector<T> tx;                            // float32 targets
   std::vector<T> ty;
 };
@@ -121,6 +123,11 @@ struct GroupFrame {
   double ox = 0.0;  // subtracted from positions, then scaled by `scale`
   double oy = 0.0;
   double scale = 1.0;
+  // The interpolation square: centre and half side (0: no far list).
+  double cx = 0.0;
+  double cy = 0.0;
+  double half = 0.0;
+  double far2 = 0.0;  // nodes whose centre of mass is farther than sqrt(far2) from (cx, cy)
 };
 
 // The number of threads for a step over n bodies.
@@ -203,6 +210,9 @@ struct BarnesHut::Workspace {
   bh::GroupFrame group_frame(const bh::Node& g, bool float32, double scale) const;
   template <typename T>
   void collect(const bh::GroupFrame& f, bool multipoles, Scratch& s, bh::Lists<T>& lists);
+  template <typename T>
+  void sum_far(const bh::Node& g, const bh::GroupFrame& f, const detail::KernelTable& k,
+               const detail::LawParams& p, bh::Lists<T>& lists);
   template <typename T>
   void sum_group(const bh::Node& g, const bh::GroupFrame& f, const detail::KernelTable& k,
                  const detail::LawParams& p, Scratch& s, bh::Lists<T>& lists);
