@@ -746,7 +746,8 @@ Section barnes_hut_section(const Plan& plan, Runner& runner, Results& results) {
 
   section.notes = {
       "One step is one evaluation of all N accelerations (tree build and walk; leaf 16, group "
-      "128, multipoles to third order) on the uniform disk of the direct rows, Plummer softening " +
+      "128, multipoles to third order, the far nodes' field interpolated over each group) on the "
+      "uniform disk of the direct rows, Plummer softening " +
           printf_text("%.2g", peers::kDiskSoftening) + ".",
       "tree build: its share of a step (bounding box, Morton sort, tree, moments; the rest is "
       "the walk). From 2,000 bodies every part of it runs on the threads too: the Morton "
