@@ -35,6 +35,31 @@ constexpr double kFarRatio = 4.0;
 // Groups of at most this many bodies sum every node at each target (the
 // stencil would cost about as much).
 constexpr std::size_t kFarMinTargets = 32;
+
+// The Chebyshev points on [-1, 1] and the Lagrange basis' weights
+// 1 / prod_{j != i} (u_i - u_j).
+struct Stencil {
+  double u[kStencil];
+  double weight[kStencil];
+};
+const Stencil& stencil() {
+  static const Stencil s = [] {
+    Stencil t{};
+    constexpr double kPi = 3.141592653589793;
+    for (std::size_t i = 0; i < kStencil; ++i) {
+      t.u[i] = std::cos((2.0 * static_cast<double>(i) + 1.0) * kPi / (2.0 * kStencil));
+    }
+    for (std::size_t i = 0; i < kStencil; ++i) {
+      double d = 1.0;
+      for (std::size_t j = 0; j < kStencil; ++j) {
+        if (j != i) d *= t.u[i] - t.u[j];
+      }
+      t.weight[i] = 1.0 / d;
+    }
+    return t;
+  }();
+  return s;
+}
 }  // namespace
 
 void BarnesHut::Workspace::walk(const detail::LawParams& p, double scale, bool float32,
@@ -189,10 +214,8 @@ void BarnesHut::Workspace::sum_far(const bh::Node& g, const bh::GroupFrame& f,
                                    const detail::KernelTable& k, const detail::LawParams& p,
                                    bh::Lists<T>& lists) {
   constexpr std::size_t S = kStencil;
-  double nodes_u[S];  // Chebyshev points on [-1, 1]
-  for (std::size_t i = 0; i < S; ++i) {
-    nodes_u[i] = std::cos((2.0 * static_cast<double>(i) + 1.0) * 3.141592653589793 / (2.0 * S));
-  }
+  const Stencil& st = stencil();
+  const auto& nodes_u = st.u;
   T px[S * S];
   T py[S * S];
   for (std::size_t i = 0; i < S; ++i) {
@@ -213,9 +236,9 @@ void BarnesHut::Workspace::sum_far(const bh::Node& g, const bh::GroupFrame& f,
   }
   const auto basis = [&](double u, double(&l)[S]) {
     for (std::size_t i = 0; i < S; ++i) {
-      double v = 1.0;
+      double v = st.weight[i];
       for (std::size_t j = 0; j < S; ++j) {
-        if (j != i) v *= (u - nodes_u[j]) / (nodes_u[i] - nodes_u[j]);
+        if (j != i) v *= u - nodes_u[j];
       }
       l[i] = v;
     }
