@@ -87,16 +87,21 @@ Plan quick_plan() {
   return plan;
 }
 
-// The issue's targets.
+// The issue's targets. The n-body ones are ratios against a floor or peer
+// measured in the same run: the share of the FMA floor (issue 9), and
+// Barnes-Hut's speed-up over the direct sum at the same N: 2x the 486x that
+// the code before issue 9 reached at RMS error < 1e-3 (theta 0.45, N = 10^6,
+// float64, 2 threads: 3.69 steps/s, docs/PERFORMANCE.md's full run).
 constexpr std::size_t kTargetDirectN = 16000;
-constexpr double kTargetDirect32 = 6e9;
-constexpr double kTargetDirect64 = 1.6e9;
+constexpr double kTargetDirect32 = 0.75;
+constexpr double kTargetDirect64 = 0.5;
 constexpr std::size_t kTargetMoversN = 100000;
 constexpr double kTargetMovers32 = 2e9;
 constexpr double kTargetMovers64 = 1e9;
 constexpr std::size_t kTargetBarnesHutN = 1000000;
-constexpr double kTargetBarnesHut = 3.0;
+constexpr double kTargetBarnesHut = 2.0 * 486.0;
 constexpr double kTargetScaling = 1.8;
+constexpr double kTargetScalingBarnesHut = 1.85;  // issue 9
 constexpr std::size_t kScalingMinN = 10000;
 
 const char* const kArithmeticNames[] = {"book", "float64", "float32"};
@@ -337,6 +342,7 @@ struct BarnesHutRow {
 
 struct Results {
   std::map<std::tuple<std::size_t, bool, int>, double> direct;  // (N, float32, threads): pairs/s
+  std::map<std::pair<bool, int>, double> direct_floor;          // (float32, threads): pairs/s
   std::map<std::tuple<std::size_t, int, int>, double> movers;   // (N, arithmetic, threads)
   std::map<std::tuple<std::size_t, bool, int>, double> movers_floor;  // (N, float32, threads)
   std::vector<BarnesHutRow> barnes_hut;
@@ -370,6 +376,8 @@ Section nbody_section(const Plan& plan, Runner& runner, Results& results) {
   table.columns = {"what",     ">N",          "precision",     ">threads",
                    ">pairs/s", ">vs learner", ">of FMA floor", "note"};
   for (int threads : {1, 2}) {
+    results.direct_floor[{true, threads}] = pair_floor.pairs32(peak[threads]);
+    results.direct_floor[{false, threads}] = pair_floor.pairs64(peak[threads]);
     table.rows.push_back({"floor: FMA peak / flops per pair", "any", "float32",
                           std::to_string(threads), rate_text(pair_floor.pairs32(peak[threads])), "",
                           "100%", ""});
@@ -738,11 +746,13 @@ Section barnes_hut_section(const Plan& plan, Runner& runner, Results& results) {
 
   section.notes = {
       "One step is one evaluation of all N accelerations (tree build and walk; leaf 16, group "
-      "128, multipoles to third order) on the uniform disk of the direct rows, Plummer softening " +
+      "128, multipoles to third order, the far nodes' field interpolated over each group) on the "
+      "uniform disk of the direct rows, Plummer softening " +
           printf_text("%.2g", peers::kDiskSoftening) + ".",
       "tree build: its share of a step (bounding box, Morton sort, tree, moments; the rest is "
-      "the walk, which scales with the threads). Below 16,384 bodies the build runs on one "
-      "thread, and above it gains little from a second: it bounds the 2-thread speed-up.",
+      "the walk). From 2,000 bodies every part of it runs on the threads too: the Morton "
+      "sort's slices, about 64 subtrees built side by side, the moments; the top of the tree "
+      "and the merge of the subtrees stay serial.",
       "error: |a - a_direct| / |a_direct| against the direct float64 sum, over " +
           count_text(plan.error_sample) +
           " random bodies (all of them when N is smaller); results are bit-identical for any "
@@ -781,6 +791,16 @@ std::optional<double> lookup(const Map& map, const Key& key) {
   return it->second;
 }
 
+// A rate as a share of its floor measured in the same run.
+TargetRow share_target(const std::string& target, double goal, std::optional<double> measured,
+                       std::optional<double> floor, bool section_ran) {
+  if (!section_ran) return {target, "-", "not run"};
+  if (!measured || !floor) return {target, "-", "not measured (--quick)"};
+  const double share = *measured / *floor;
+  return {target, percent_text(share) + " (" + rate_text(*measured) + " pairs/s)",
+          pass(share >= goal)};
+}
+
 // The smallest 2-thread / 1-thread ratio among rows with N >= kScalingMinN.
 struct Scaling {
   double ratio = 0.0;
@@ -793,13 +813,14 @@ void worst(Scaling& scaling, double one, double two, const std::string& where) {
   if (scaling.where.empty() || ratio < scaling.ratio) scaling = {ratio, where};
 }
 
-TargetRow scaling_target(const std::string& what, const Scaling& scaling, bool section_ran) {
-  const std::string target = "2 threads >= " + printf_text("%.2g", kTargetScaling) +
+TargetRow scaling_target(const std::string& what, const Scaling& scaling, bool section_ran,
+                         double goal = kTargetScaling) {
+  const std::string target = "2 threads >= " + printf_text("%.3g", goal) +
                              "x 1 thread, N >= " + count_text(kScalingMinN) + ": " + what;
   if (!section_ran) return {target, "-", "not run"};
   if (scaling.where.empty()) return {target, "-", "not measured (--quick)"};
   return {target, "lowest " + ratio_text(scaling.ratio) + " (" + scaling.where + ")",
-          pass(scaling.ratio >= kTargetScaling)};
+          pass(scaling.ratio >= goal)};
 }
 
 Section targets_section(const Plan& plan, const Results& results) {
@@ -811,12 +832,15 @@ Section targets_section(const Plan& plan, const Results& results) {
     table.rows.push_back({row.target, row.measured, row.result});
   };
 
-  add(rate_target("direct float32, N = 16,000, 2 threads: >= 6e9 pairs/s", kTargetDirect32,
-                  "pairs/s", lookup(results.direct, std::make_tuple(kTargetDirectN, true, 2)),
-                  plan.nbody));
-  add(rate_target("direct float64, N = 16,000, 2 threads: >= 1.6e9 pairs/s", kTargetDirect64,
-                  "pairs/s", lookup(results.direct, std::make_tuple(kTargetDirectN, false, 2)),
-                  plan.nbody));
+  for (const bool float32 : {true, false}) {
+    const double goal = float32 ? kTargetDirect32 : kTargetDirect64;
+    const std::string target = std::string("direct ") + precision_name(float32) +
+                               ", N = 16,000, 2 threads: >= " + percent_text(goal) +
+                               " of the FMA floor";
+    add(share_target(target, goal,
+                     lookup(results.direct, std::make_tuple(kTargetDirectN, float32, 2)),
+                     lookup(results.direct_floor, std::make_pair(float32, 2)), plan.nbody));
+  }
   add(rate_target("movers float32, N = 100,000, 2 threads: >= 2e9 body-steps/s", kTargetMovers32,
                   "body-steps/s", lookup(results.movers, std::make_tuple(kTargetMoversN, 2, 2)),
                   plan.movers));
@@ -849,10 +873,14 @@ Section targets_section(const Plan& plan, const Results& results) {
     }
   }
 
-  // Barnes-Hut: the fastest 2-thread row at 10^6 that meets the accuracy.
+  // Barnes-Hut: the fastest 2-thread row at 10^6 that meets the accuracy
+  // (the target is float64's; float32 is shown beside it).
   for (const bool float32 : {false, true}) {
-    const std::string target = std::string("Barnes-Hut ") + precision_name(float32) +
-                               ", N = 10^6, 2 threads, RMS error < 1e-3: >= 3 steps/s";
+    const std::string target =
+        std::string("Barnes-Hut ") + precision_name(float32) +
+        ", N = 10^6, 2 threads, RMS error < 1e-3: " +
+        (float32 ? std::string("vs the direct sum (no target)")
+                 : ">= " + printf_text("%.0f", kTargetBarnesHut) + "x the direct sum");
     if (!plan.barnes_hut) {
       add({target, "-", "not run"});
       continue;
@@ -869,10 +897,19 @@ Section targets_section(const Plan& plan, const Results& results) {
     } else if (best == nullptr) {
       add({target, "no theta tried meets the RMS error", "MISS"});
     } else {
-      add({target,
-           rate_text(best->rate) + " steps/s at theta " + printf_text("%.2g", best->theta) +
-               " (RMS " + error_text(best->error.rms) + ")",
-           pass(best->rate >= kTargetBarnesHut)});
+      // The direct sum's steps/s at 10^6, from its pairs/s at the largest N of this run.
+      const auto direct =
+          lookup(results.direct, std::make_tuple(results.direct_reference_n, float32, 2));
+      const std::string at = " steps/s at theta " + printf_text("%.2g", best->theta) + " (RMS " +
+                             error_text(best->error.rms) + ")";
+      if (!direct) {
+        add({target, rate_text(best->rate) + at + "; vs direct needs the nbody rows", "-"});
+      } else {
+        const double speedup = best->rate * static_cast<double>(kTargetBarnesHutN) *
+                               static_cast<double>(kTargetBarnesHutN) / *direct;
+        add({target, ratio_text(speedup) + ": " + rate_text(best->rate) + at,
+             float32 ? "-" : pass(speedup >= kTargetBarnesHut)});
+      }
     }
   }
 
@@ -908,7 +945,7 @@ Section targets_section(const Plan& plan, const Results& results) {
       }
     }
   }
-  add(scaling_target("Barnes-Hut", tree, plan.barnes_hut));
+  add(scaling_target("Barnes-Hut", tree, plan.barnes_hut, kTargetScalingBarnesHut));
 
   section.tables.push_back(std::move(table));
   if (nb::max_threads() < 2) {

@@ -62,6 +62,9 @@ constexpr std::size_t kBlockVectors64 = 2;
 constexpr std::size_t kBlockVectors32 = 2;
 constexpr const char* kName = "generic";
 #endif
+// Barnes-Hut groups (tens of targets): blocks of this many vectors, then
+// single ones (run_group_blocks).
+constexpr std::size_t kGroupBlockVectors = 2;
 
 using VD = double __attribute__((vector_size(kVectorBytes)));
 using VF = float __attribute__((vector_size(kVectorBytes)));
@@ -193,7 +196,7 @@ constexpr int kFloatEstimateSteps = 3;
 // last step): the last Newton step y (3 - r2 y^2) leaves out its factor 1/2,
 // which the caller folds into a constant (see kLastStepScale).
 template <typename V>
-constexpr typename Scalar<V>::type kLastStepScale = kNewtonSteps<V> > 0 ? 2 : 1;
+[[maybe_unused]] constexpr typename Scalar<V>::type kLastStepScale = kNewtonSteps<V> > 0 ? 2 : 1;
 
 template <typename V>
 [[gnu::always_inline]] inline V rsqrt_scaled(V r2) {
@@ -438,6 +441,22 @@ void run_blocks(const typename Scalar<V>::type* tx, const typename Scalar<V>::ty
   }
 }
 
+// Barnes-Hut groups: blocks of R vectors while they are full, then single
+// vectors, so that a group pads at most one vector. Each lane still sums its
+// target's pairs in source order: the same bits as run_blocks<V, 1>.
+template <typename V, std::size_t R, typename Sources>
+void run_group_blocks(const typename Scalar<V>::type* tx, const typename Scalar<V>::type* ty,
+                      const typename Scalar<V>::type* tx_lo, const typename Scalar<V>::type* ty_lo,
+                      std::size_t nt, const Sources& sources, double* out_x, double* out_y) {
+  constexpr std::size_t B = R * kLanes<V>;
+  const std::size_t full = nt / B * B;
+  if (full > 0) run_blocks<V, R>(tx, ty, tx_lo, ty_lo, full, sources, out_x, out_y);
+  if (full == nt) return;
+  const auto rest = [full](const auto* p) { return p == nullptr ? p : p + full; };
+  run_blocks<V, 1>(rest(tx), rest(ty), rest(tx_lo), rest(ty_lo), nt - full, sources, out_x + full,
+                   out_y + full);
+}
+
 template <typename T>
 struct VectorOf;
 template <>
@@ -459,7 +478,7 @@ T eps2_of(const LawParams& p) {
 }
 
 // Point sources under the law of p, R vectors of targets per block.
-template <typename V, std::size_t R, bool kSplit>
+template <typename V, std::size_t R, bool kSplit, bool kGroup>
 void accumulate_law(const typename Scalar<V>::type* tx, const typename Scalar<V>::type* ty,
                     const typename Scalar<V>::type* tx_lo, const typename Scalar<V>::type* ty_lo,
                     std::size_t nt, const Bodies<typename Scalar<V>::type>& s, const LawParams& p,
@@ -470,7 +489,11 @@ void accumulate_law(const typename Scalar<V>::type* tx, const typename Scalar<V>
   const V hi = splat<V>(sizeof(T) == 4 ? T(p.hi_f) : T(p.hi));
   const V e = splat<V>(eps2);
   const auto run = [&](const auto& sources) {
-    run_blocks<V, R>(tx, ty, tx_lo, ty_lo, nt, sources, out_x, out_y);
+    if constexpr (kGroup) {
+      run_group_blocks<V, R>(tx, ty, tx_lo, ty_lo, nt, sources, out_x, out_y);
+    } else {
+      run_blocks<V, R>(tx, ty, tx_lo, ty_lo, nt, sources, out_x, out_y);
+    }
   };
   switch (p.law) {
     case Law::plummer:
@@ -495,20 +518,20 @@ void accumulate_law(const typename Scalar<V>::type* tx, const typename Scalar<V>
   }
 }
 
-template <std::size_t R>
+template <std::size_t R, bool kGroup>
 void accumulate64(const double* tx, const double* ty, std::size_t nt, const Bodies<double>& s,
                   const LawParams& p, double* out_x, double* out_y) {
-  accumulate_law<VD, R, false>(tx, ty, nullptr, nullptr, nt, s, p, out_x, out_y);
+  accumulate_law<VD, R, false, kGroup>(tx, ty, nullptr, nullptr, nt, s, p, out_x, out_y);
 }
 
-template <std::size_t R>
+template <std::size_t R, bool kGroup>
 void accumulate32(const float* tx, const float* ty, const float* tx_lo, const float* ty_lo,
                   std::size_t nt, const Bodies<float>& s, const LawParams& p, double* out_x,
                   double* out_y) {
   if (tx_lo != nullptr && ty_lo != nullptr && s.x_lo != nullptr && s.y_lo != nullptr) {
-    accumulate_law<VF, R, true>(tx, ty, tx_lo, ty_lo, nt, s, p, out_x, out_y);
+    accumulate_law<VF, R, true, kGroup>(tx, ty, tx_lo, ty_lo, nt, s, p, out_x, out_y);
   } else {
-    accumulate_law<VF, R, false>(tx, ty, nullptr, nullptr, nt, s, p, out_x, out_y);
+    accumulate_law<VF, R, false, kGroup>(tx, ty, nullptr, nullptr, nt, s, p, out_x, out_y);
   }
 }
 
@@ -516,8 +539,8 @@ template <typename T>
 void accumulate_multipole(const T* tx, const T* ty, std::size_t nt, const Nodes<T>& s,
                           const LawParams& p, double* out_x, double* out_y) {
   using V = typename VectorOf<T>::type;
-  run_blocks<V, 1>(tx, ty, nullptr, nullptr, nt, MultipoleSources<V>{s, splat<V>(eps2_of<T>(p))},
-                   out_x, out_y);
+  run_group_blocks<V, kGroupBlockVectors>(
+      tx, ty, nullptr, nullptr, nt, MultipoleSources<V>{s, splat<V>(eps2_of<T>(p))}, out_x, out_y);
 }
 
 }  // namespace
@@ -526,12 +549,12 @@ const KernelTable& CALDER_NBODY_CAT(kernel_table_, CALDER_NBODY_VARIANT)() {
   static const KernelTable table{kName,
                                  kBlockVectors64 * kLanes<VD>,
                                  kBlockVectors32 * kLanes<VF>,
-                                 accumulate64<kBlockVectors64>,
-                                 accumulate32<kBlockVectors32>,
+                                 accumulate64<kBlockVectors64, false>,
+                                 accumulate32<kBlockVectors32, false>,
                                  kLanes<VD>,
                                  kLanes<VF>,
-                                 accumulate64<1>,
-                                 accumulate32<1>,
+                                 accumulate64<kGroupBlockVectors, true>,
+                                 accumulate32<kGroupBlockVectors, true>,
                                  accumulate_multipole<double>,
                                  accumulate_multipole<float>};
   return table;

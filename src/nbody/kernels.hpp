@@ -108,7 +108,7 @@ struct KernelTable {
   std::size_t block32;        // and float32
   Accumulate64 accumulate64;  // wide register blocks (direct summation)
   Accumulate32 accumulate32;
-  std::size_t group_block64;  // one vector of targets (Barnes-Hut groups)
+  std::size_t group_block64;  // one vector of targets (Barnes-Hut groups pad at most one)
   std::size_t group_block32;
   Accumulate64 group64;
   Accumulate32 group32;

@@ -1,0 +1,462 @@
+// SPDX-License-Identifier: MIT
+// Barnes-Hut, the build: bounding square; 48-bit Morton codes (24 bits per
+// axis); a stable LSD radix sort (6 passes of 8 bits, threads scatter their
+// own slices, so the order is the same for any thread count); the tree,
+// depth first, each node the smallest quadtree cell holding its bodies; mass,
+// centre of mass and second and third moments bottom up (parallel axis
+// theorem). The top of the tree is split serially down to about kSubtrees
+// subtrees, which threads build on their own and which are then appended in
+// a fixed order: the same tree for any number of threads.
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "barnes_hut_tree.hpp"
+
+#if defined(_OPENMP)
+#include <omp.h>
+#endif
+
+namespace calder::nbody {
+
+using bh::kBits;
+using bh::kCells;
+
+namespace {
+
+// Interleaves the low 24 bits of v with zeros: bit k goes to bit 2k.
+std::uint64_t spread(std::uint32_t v) {
+  std::uint64_t x = v & (kCells - 1);
+  x = (x | (x << 16)) & 0x0000FFFF0000FFFFull;
+  x = (x | (x << 8)) & 0x00FF00FF00FF00FFull;
+  x = (x | (x << 4)) & 0x0F0F0F0F0F0F0F0Full;
+  x = (x | (x << 2)) & 0x3333333333333333ull;
+  x = (x | (x << 1)) & 0x5555555555555555ull;
+  return x;
+}
+
+// The inverse of spread: bits 0, 2, 4, ... of x.
+std::uint32_t compact(std::uint64_t x) {
+  x &= 0x5555555555555555ull;
+  x = (x | (x >> 1)) & 0x3333333333333333ull;
+  x = (x | (x >> 2)) & 0x0F0F0F0F0F0F0F0Full;
+  x = (x | (x >> 4)) & 0x00FF00FF00FF00FFull;
+  x = (x | (x >> 8)) & 0x0000FFFF0000FFFFull;
+  x = (x | (x >> 16)) & 0x00000000FFFFFFFFull;
+  return static_cast<std::uint32_t>(x);
+}
+
+int leading_zeros(std::uint64_t x) {  // x != 0
+  int n = 0;
+  for (int step = 32; step > 0; step /= 2) {
+    if ((x >> (64 - step)) == 0) {
+      n += step;
+      x <<= step;
+    }
+  }
+  return n;
+}
+
+// This thread's share [lo, hi) of n items, the same in every pass.
+struct Slice {
+  std::size_t t = 0;
+  std::size_t nt = 1;
+  std::size_t lo = 0;
+  std::size_t hi = 0;
+};
+Slice my_slice(std::size_t n) {
+#if defined(_OPENMP)
+  const auto t = static_cast<std::size_t>(omp_get_thread_num());
+  const auto nt = static_cast<std::size_t>(omp_get_num_threads());
+#else
+  const std::size_t t = 0;
+  const std::size_t nt = 1;
+#endif
+  return Slice{t, nt, n * t / nt, n * (t + 1) / nt};
+}
+
+}  // namespace
+
+void BarnesHut::Workspace::build(std::span<const double> x, std::span<const double> y,
+                                 std::span<const double> mass, int threads) {
+  const int team = bh::team_for(x.size(), threads);
+  bound(x, y, team);
+  sort_bodies(x, y, mass, team);
+  build_tree(team);
+}
+
+// The root square: the bounding box's lower corner and its larger side.
+void BarnesHut::Workspace::bound(std::span<const double> x, std::span<const double> y,
+                                 [[maybe_unused]] int team) {
+  double xmin = x[0];
+  double xmax = x[0];
+  double ymin = y[0];
+  double ymax = y[0];
+  const auto count = static_cast<std::ptrdiff_t>(x.size());
+#if defined(_OPENMP)
+#pragma omp parallel for schedule(static) num_threads(team) reduction(min           \
+                                                                      : xmin, ymin) \
+    reduction(max                                                                   \
+              : xmax, ymax)
+#endif
+  for (std::ptrdiff_t i = 0; i < count; ++i) {
+    const auto u = static_cast<std::size_t>(i);
+    xmin = std::min(xmin, x[u]);
+    xmax = std::max(xmax, x[u]);
+    ymin = std::min(ymin, y[u]);
+    ymax = std::max(ymax, y[u]);
+  }
+  x0 = xmin;
+  y0 = ymin;
+  side = std::max(xmax - xmin, ymax - ymin);
+  if (!(side > 0.0)) side = 1.0;  // one point (or one body)
+}
+
+// Morton keys, their radix sort, and the bodies gathered in Morton order.
+void BarnesHut::Workspace::sort_bodies(std::span<const double> x, std::span<const double> y,
+                                       std::span<const double> mass, [[maybe_unused]] int team) {
+  const std::size_t n = x.size();
+  const double to_cell = static_cast<double>(kCells) / side;
+  const auto quantise = [&](double v, double origin) {
+    const double c = (v - origin) * to_cell;  // >= 0
+    return c >= static_cast<double>(kCells - 1) ? kCells - 1 : static_cast<std::uint32_t>(c);
+  };
+  keys.resize(n);
+  keys_tmp.resize(n);
+  order.resize(n);
+  order_tmp.resize(n);
+  sx.resize(n);
+  sy.resize(n);
+  sm.resize(n);
+  radix_counts.assign(static_cast<std::size_t>(team) * bh::kRadixBuckets, 0);
+  double heaviest = 0.0;
+#if defined(_OPENMP)
+#pragma omp parallel num_threads(team) reduction(max : heaviest)
+#endif
+  {
+    const Slice s = my_slice(n);
+    for (std::size_t i = s.lo; i < s.hi; ++i) {
+      keys[i] = spread(quantise(x[i], x0)) | (spread(quantise(y[i], y0)) << 1);
+      order[i] = static_cast<std::uint32_t>(i);
+    }
+    radix_sort_slice(s.t, s.nt, s.lo, s.hi);
+    for (std::size_t r = s.lo; r < s.hi; ++r) {
+      const std::uint32_t i = order[r];
+      sx[r] = x[i];
+      sy[r] = y[i];
+      sm[r] = mass[i];
+      heaviest = std::max(heaviest, mass[i]);
+    }
+  }
+  max_mass = heaviest;
+}
+
+// LSD radix sort of (key, index), called by every thread of a team with its
+// slice [lo, hi): stable, so equal keys stay in index order; slice t of the
+// input goes, in order, after slices 0 .. t-1 of each bucket, so the result
+// does not depend on the number of threads.
+void BarnesHut::Workspace::radix_sort_slice(std::size_t t, std::size_t nt, std::size_t lo,
+                                            std::size_t hi) {
+  constexpr std::size_t kMask = bh::kRadixBuckets - 1;
+  const std::size_t n = keys.size();
+  bool skip = false;  // one thread writes it between barriers
+  for (int pass = 0; pass < bh::kRadixPasses; ++pass) {
+    const int shift = pass * bh::kRadixBits;
+    std::size_t* counts = radix_counts.data() + t * bh::kRadixBuckets;
+    std::fill(counts, counts + bh::kRadixBuckets, std::size_t{0});
+    for (std::size_t i = lo; i < hi; ++i) ++counts[(keys[i] >> shift) & kMask];
+#if defined(_OPENMP)
+#pragma omp barrier
+#pragma omp single copyprivate(skip)
+#endif
+    {
+      // Exclusive prefix sums, bucket-major then thread; skip a pass in
+      // which every key has the same digit.
+      std::size_t offset = 0;
+      skip = false;
+      for (std::size_t b = 0; b < bh::kRadixBuckets; ++b) {
+        std::size_t bucket = 0;
+        for (std::size_t u = 0; u < nt; ++u) {
+          std::size_t& c = radix_counts[u * bh::kRadixBuckets + b];
+          const std::size_t here = c;
+          c = offset;
+          offset += here;
+          bucket += here;
+        }
+        if (bucket == n) skip = true;
+      }
+    }
+    if (!skip) {
+      for (std::size_t i = lo; i < hi; ++i) {
+        const std::size_t to = counts[(keys[i] >> shift) & kMask]++;
+        keys_tmp[to] = keys[i];
+        order_tmp[to] = order[i];
+      }
+    }
+#if defined(_OPENMP)
+#pragma omp barrier
+#pragma omp single
+#endif
+    if (!skip) {
+      keys.swap(keys_tmp);
+      order.swap(order_tmp);
+    }
+  }
+}
+
+// The number of quadtree levels that the bodies [begin, end) share: their
+// node's cell is the smallest one holding them all (chains of single
+// children are skipped); kBits when they all share one Morton code.
+int BarnesHut::Workspace::level_of(std::uint32_t begin, std::uint32_t end) const {
+  const std::uint64_t first = keys[begin];
+  const std::uint64_t last = keys[end - 1];
+  return first == last ? kBits : (leading_zeros(first ^ last) - (64 - 2 * kBits)) / 2;
+}
+
+// Splits node `index` of t (bodies [begin, end), common prefix `level`) into
+// its non-empty quadrants, appended to t as contiguous children; returns how
+// many. bounds: the quadrants' body ranges.
+std::uint32_t BarnesHut::Workspace::split(bh::Tree& t, std::uint32_t index, std::uint32_t begin,
+                                          std::uint32_t end, int level,
+                                          std::uint32_t (&bounds)[5]) const {
+  // The quadrant digit below the common prefix: bits 2 (kBits - 1 - level) + {0, 1}.
+  const int shift = 2 * (kBits - 1 - level);
+  bounds[0] = begin;
+  const auto at = [&](std::uint32_t i) { return keys.begin() + static_cast<std::ptrdiff_t>(i); };
+  for (std::uint64_t d = 1; d < 4; ++d) {
+    bounds[d] = static_cast<std::uint32_t>(
+        std::partition_point(at(bounds[d - 1]), at(end),
+                             [&](std::uint64_t key) { return ((key >> shift) & 3u) < d; }) -
+        keys.begin());
+  }
+  bounds[4] = end;
+  std::uint32_t children = 0;
+  for (int q = 0; q < 4; ++q) children += bounds[q + 1] > bounds[q] ? 1 : 0;
+  bh::Node& node = t.nodes[index];
+  node.begin = begin;
+  node.end = end;
+  node.child = static_cast<std::uint32_t>(t.nodes.size());
+  node.children = children;
+  t.nodes.resize(t.nodes.size() + children);
+  t.moments.resize(t.nodes.size());
+  return children;
+}
+
+// The whole tree: its top serially (plan), the subtrees below in parallel
+// (each in its own Tree, numbered from 0), then the subtrees' nodes appended
+// in a fixed order and the top finished bottom up.
+void BarnesHut::Workspace::build_tree(int team) {
+  const auto n = static_cast<std::uint32_t>(keys.size());
+  tree.reset();
+  tree.nodes.reserve(2 * std::size_t{n});  // every inner node has >= 2 children: < 2n nodes
+  tree.moments.reserve(2 * std::size_t{n});
+  pending.clear();
+  top.clear();
+  // Never a group or a leaf above the subtrees. The cutoff depends on the
+  // bodies only: the tree is the same for any number of threads.
+  const std::size_t cutoff = std::max({std::size_t{n} / bh::kSubtrees, group_size, leaf_size});
+  plan(0, 0, n, 0, cutoff);
+  build_parts(team);
+  merge_parts(team);
+  for (auto it = top.rbegin(); it != top.rend(); ++it) finish_node(tree, *it);
+}
+
+// The top of the tree, serially: nodes with more than `cutoff` bodies are
+// split here; the others are left in `pending` for the parallel build.
+void BarnesHut::Workspace::plan(std::uint32_t index, std::uint32_t begin, std::uint32_t end,
+                                int tree_depth, std::size_t cutoff) {
+  const int level = level_of(begin, end);
+  if (end - begin <= cutoff || level == kBits) {
+    pending.push_back(bh::Pending{index, begin, end, tree_depth});
+    return;
+  }
+  top.push_back(index);
+  std::uint32_t bounds[5];
+  split(tree, index, begin, end, level, bounds);
+  std::uint32_t c = tree.nodes[index].child;
+  for (int q = 0; q < 4; ++q) {
+    if (bounds[q + 1] > bounds[q]) plan(c++, bounds[q], bounds[q + 1], tree_depth + 1, cutoff);
+  }
+}
+
+// Each pending subtree in its own Tree, threads taking them dynamically.
+void BarnesHut::Workspace::build_parts([[maybe_unused]] int team) {
+  if (parts.size() < pending.size()) parts.resize(pending.size());
+  const auto count = static_cast<std::ptrdiff_t>(pending.size());
+#if defined(_OPENMP)
+#pragma omp parallel for schedule(dynamic, 1) num_threads(team)
+#endif
+  for (std::ptrdiff_t k = 0; k < count; ++k) {
+    const bh::Pending& p = pending[static_cast<std::size_t>(k)];
+    bh::Tree& part = parts[static_cast<std::size_t>(k)];
+    part.reset();
+    part.nodes.reserve(2 * std::size_t{p.end - p.begin});
+    part.moments.reserve(2 * std::size_t{p.end - p.begin});
+    build_node(part, 0, p.begin, p.end, p.depth, false);
+  }
+}
+
+// The parts' nodes into the tree: part k's node c goes to its root's slot
+// (c = 0) or to part_base[k] + c - 1; groups in part order.
+void BarnesHut::Workspace::merge_parts([[maybe_unused]] int team) {
+  part_base.resize(pending.size() + 1);
+  part_base[0] = tree.nodes.size();
+  for (std::size_t k = 0; k < pending.size(); ++k) {
+    part_base[k + 1] = part_base[k] + parts[k].nodes.size() - 1;
+    tree.depth = std::max(tree.depth, parts[k].depth);
+    tree.leaves += parts[k].leaves;
+  }
+  tree.nodes.resize(part_base.back());
+  tree.moments.resize(part_base.back());
+  const auto count = static_cast<std::ptrdiff_t>(pending.size());
+#if defined(_OPENMP)
+#pragma omp parallel for schedule(dynamic, 1) num_threads(team)
+#endif
+  for (std::ptrdiff_t k = 0; k < count; ++k) {
+    const auto u = static_cast<std::size_t>(k);
+    const bh::Tree& part = parts[u];
+    const std::uint32_t root = pending[u].index;
+    const auto base = static_cast<std::uint32_t>(part_base[u]);
+    for (std::size_t c = 0; c < part.nodes.size(); ++c) {
+      bh::Node node = part.nodes[c];
+      if (node.children > 0) node.child = base + node.child - 1;
+      const std::size_t to = c == 0 ? root : base + c - 1;
+      tree.nodes[to] = node;
+      tree.moments[to] = part.moments[c];
+    }
+  }
+  for (std::size_t k = 0; k < pending.size(); ++k) {
+    const auto base = static_cast<std::uint32_t>(part_base[k]);
+    for (const std::uint32_t g : parts[k].groups) {
+      tree.groups.push_back(g == 0 ? pending[k].index : base + g - 1);
+    }
+  }
+}
+
+// Builds node `index` of t over the bodies [begin, end) (end > begin) and its
+// subtree: split unless it has at most leaf_size bodies or they all share one
+// Morton code. The first node on each path with at most group_size bodies
+// (or a leaf) is a group.
+void BarnesHut::Workspace::build_node(bh::Tree& t, std::uint32_t index, std::uint32_t begin,
+                                      std::uint32_t end, int tree_depth, bool in_group) const {
+  const int level = level_of(begin, end);
+  t.depth = std::max(t.depth, tree_depth);
+  const std::size_t count = end - begin;
+  const bool leaf = count <= leaf_size || level == kBits;
+  if (!in_group && (count <= group_size || leaf)) {
+    t.groups.push_back(index);
+    in_group = true;
+  }
+  if (leaf) {
+    ++t.leaves;
+    bh::Node& node = t.nodes[index];
+    node.begin = begin;
+    node.end = end;
+    node.child = 0;
+    node.children = 0;
+  } else {
+    std::uint32_t bounds[5];
+    split(t, index, begin, end, level, bounds);  // reserved capacity: no reallocation
+    std::uint32_t c = t.nodes[index].child;
+    for (int q = 0; q < 4; ++q) {
+      if (bounds[q + 1] > bounds[q])
+        build_node(t, c++, bounds[q], bounds[q + 1], tree_depth + 1, in_group);
+    }
+  }
+  finish_node(t, index);
+}
+
+// Mass, centre of mass and moments of node `index` of t (from its bodies, or
+// from its children, which must be finished), and its opening radius.
+void BarnesHut::Workspace::finish_node(bh::Tree& t, std::uint32_t index) const {
+  bh::Node& node = t.nodes[index];
+  bh::Moments mo;
+  if (node.children == 0) {
+    leaf_moments(node, mo);
+  } else {
+    merge_moments(t, node, mo);
+  }
+  t.moments[index] = mo;
+  set_opening_radius(node);
+}
+
+// A leaf: its centre of mass and moments from its bodies.
+void BarnesHut::Workspace::leaf_moments(bh::Node& node, bh::Moments& mo) const {
+  double mass = 0.0;
+  double mx = 0.0;
+  double my = 0.0;
+  for (std::uint32_t b = node.begin; b < node.end; ++b) {
+    mass += sm[b];
+    mx += sm[b] * sx[b];
+    my += sm[b] * sy[b];
+  }
+  mx /= mass;
+  my /= mass;
+  for (std::uint32_t b = node.begin; b < node.end; ++b) {
+    const double dx = sx[b] - mx;
+    const double dy = sy[b] - my;
+    const double m = sm[b];
+    mo.qxx += m * dx * dx;
+    mo.qxy += m * dx * dy;
+    mo.qyy += m * dy * dy;
+    mo.oxxx += m * dx * dx * dx;
+    mo.oxxy += m * dx * dx * dy;
+    mo.oxyy += m * dx * dy * dy;
+    mo.oyyy += m * dy * dy * dy;
+  }
+  mo.mass = mass;
+  node.mx = mx;
+  node.my = my;
+}
+
+// An inner node: its centre of mass and moments from its children's.
+void BarnesHut::Workspace::merge_moments(const bh::Tree& t, bh::Node& node, bh::Moments& mo) {
+  double mass = 0.0;
+  double mx = 0.0;
+  double my = 0.0;
+  const std::uint32_t first = node.child;
+  const std::uint32_t last = node.child + node.children;
+  for (std::uint32_t c = first; c < last; ++c) {
+    mass += t.moments[c].mass;
+    mx += t.moments[c].mass * t.nodes[c].mx;
+    my += t.moments[c].mass * t.nodes[c].my;
+  }
+  mx /= mass;
+  my /= mass;
+  for (std::uint32_t c = first; c < last; ++c) {
+    // The child's moments about this centre of mass, the child's centre at
+    // offset (dx, dy): s = d + s', sum m s' = 0.
+    const bh::Moments& m = t.moments[c];
+    const double dx = t.nodes[c].mx - mx;
+    const double dy = t.nodes[c].my - my;
+    mo.qxx += m.qxx + m.mass * dx * dx;
+    mo.qxy += m.qxy + m.mass * dx * dy;
+    mo.qyy += m.qyy + m.mass * dy * dy;
+    mo.oxxx += m.oxxx + 3.0 * dx * m.qxx + m.mass * dx * dx * dx;
+    mo.oxxy += m.oxxy + 2.0 * dx * m.qxy + dy * m.qxx + m.mass * dx * dx * dy;
+    mo.oxyy += m.oxyy + 2.0 * dy * m.qxy + dx * m.qyy + m.mass * dx * dy * dy;
+    mo.oyyy += m.oyyy + 3.0 * dy * m.qyy + m.mass * dy * dy * dy;
+  }
+  mo.mass = mass;
+  node.mx = mx;
+  node.my = my;
+}
+
+// Barnes' modified criterion: accepted beyond size / theta + delta from the
+// centre of mass, delta its distance to the cell's centre. The cell: level
+// `level` of the root square, found from the common prefix.
+void BarnesHut::Workspace::set_opening_radius(bh::Node& node) const {
+  const int level = level_of(node.begin, node.end);
+  const std::uint64_t key = keys[node.begin];
+  const double size = std::ldexp(side, -level);
+  const double cx = x0 + (static_cast<double>(compact(key) >> (kBits - level)) + 0.5) * size;
+  const double cy = y0 + (static_cast<double>(compact(key >> 1) >> (kBits - level)) + 0.5) * size;
+  const double delta = std::sqrt((node.mx - cx) * (node.mx - cx) + (node.my - cy) * (node.my - cy));
+  const double open = size * inv_theta + delta;
+  node.open2 = open * open;
+}
+
+}  // namespace calder::nbody

@@ -1,0 +1,75 @@
+// SPDX-License-Identifier: MIT
+// Barnes-Hut, the multipole terms: each node's mass and moments as the
+// multipole kernels read them (kernels.hpp: m, 3 Q, 1.5 tr Q, 7.5 O, 1.5 P,
+// P = sum m s |s|^2), in float64 or scaled into the float32 frame, and the
+// bodies' masses for float32.
+#include <cstddef>
+#include <vector>
+
+#include "barnes_hut_tree.hpp"
+#include "common.hpp"
+
+namespace calder::nbody {
+
+namespace {
+
+// The kernel's kMoments numbers for one node's moments, scaled by powers of
+// the frame's length and mass scales (1 for float64).
+struct MomentScales {
+  double mass = 1.0;
+  double second = 1.0;  // length^2 mass
+  double third = 1.0;   // length^3 mass
+};
+
+template <typename T>
+void write_moments(const bh::Moments& m, const MomentScales& s, T* o) {
+  o[0] = static_cast<T>(m.mass * s.mass);
+  o[1] = static_cast<T>(3.0 * m.qxx * s.second);
+  o[2] = static_cast<T>(3.0 * m.qxy * s.second);
+  o[3] = static_cast<T>(3.0 * m.qyy * s.second);
+  o[4] = static_cast<T>(1.5 * (m.qxx + m.qyy) * s.second);
+  o[5] = static_cast<T>(7.5 * m.oxxx * s.third);
+  o[6] = static_cast<T>(7.5 * m.oxxy * s.third);
+  o[7] = static_cast<T>(7.5 * m.oxyy * s.third);
+  o[8] = static_cast<T>(7.5 * m.oyyy * s.third);
+  o[9] = static_cast<T>(1.5 * (m.oxxx + m.oxyy) * s.third);
+  o[10] = static_cast<T>(1.5 * (m.oxxy + m.oyyy) * s.third);
+}
+
+template <typename T>
+void write_all_moments(const std::vector<bh::Moments>& moments, const MomentScales& s,
+                       std::vector<T>& out, [[maybe_unused]] int team) {
+  out.resize(moments.size() * bh::kMoments);
+  const auto count = static_cast<std::ptrdiff_t>(moments.size());
+#if defined(_OPENMP)
+#pragma omp parallel for schedule(static) num_threads(team)
+#endif
+  for (std::ptrdiff_t node = 0; node < count; ++node) {
+    const auto i = static_cast<std::size_t>(node);
+    write_moments(moments[i], s, out.data() + i * bh::kMoments);
+  }
+}
+
+}  // namespace
+
+void BarnesHut::Workspace::prepare_kernel_inputs(const detail::FloatFrame& frame, bool float32,
+                                                 [[maybe_unused]] int team) {
+  if (!float32) {
+    write_all_moments(tree.moments, MomentScales{}, node64, team);
+    return;
+  }
+  const double second = frame.scale * frame.scale * frame.mass_scale;
+  write_all_moments(tree.moments, MomentScales{frame.mass_scale, second, second * frame.scale},
+                    node32, team);
+  const std::size_t n = sm.size();
+  sm32.resize(n);
+#if defined(_OPENMP)
+#pragma omp parallel for schedule(static) num_threads(team)
+#endif
+  for (std::ptrdiff_t r = 0; r < static_cast<std::ptrdiff_t>(n); ++r) {
+    const auto u = static_cast<std::size_t>(r);
+    sm32[u] = static_cast<float>(sm[u] * frame.mass_scale);
+  }
+}
+
+}  // namespace calder::nbody

@@ -1,0 +1,221 @@
+// SPDX-License-Identifier: MIT
+// calder::nbody's Barnes-Hut internals, shared by its steps (one file each):
+//   barnes_hut_build.cpp    bounding square, Morton sort, the tree and its
+//                           moments (threads build subtrees of the Morton order)
+//   barnes_hut_moments.cpp  the moments as the multipole kernels read them
+//   barnes_hut_walk.cpp     per group: the tree walk, the kernels' sums and
+//                           the far field's interpolation
+//   barnes_hut.cpp          the public entry points, which run the steps
+#pragma once
+
+#include <algorithm>
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "calder/nbody.hpp"
+#include "common.hpp"
+#include "kernels.hpp"
+
+namespace calder::nbody::bh {
+
+inline constexpr int kBits = 24;  // per axis: 48-bit Morton codes, at most 24 levels
+inline constexpr std::uint32_t kCells = std::uint32_t{1} << kBits;
+inline constexpr int kRadixBits = 8;
+inline constexpr std::size_t kRadixBuckets = std::size_t{1} << kRadixBits;
+inline constexpr int kRadixPasses = 2 * kBits / kRadixBits;
+// Per node, as the multipole kernels read them (kernels.hpp): m, 3 Q (3),
+// 1.5 tr Q, 7.5 O (4), 1.5 P (2).
+inline constexpr std::size_t kMoments = 11;
+// From this many bodies every step (sort, tree, moments, walk) uses threads;
+// below, waking them costs more than they save.
+inline constexpr std::size_t kParallelFrom = 2000;
+// About this many subtrees are built in parallel (at every size, so that the
+// tree does not depend on the number of threads).
+inline constexpr std::size_t kSubtrees = 64;
+
+// What the walk reads of a node.
+struct Node {
+  double mx = 0.0;  // centre of mass
+  double my = 0.0;
+  double open2 = 0.0;       // accepted for a group farther than sqrt(open2) from (mx, my)
+  std::uint32_t begin = 0;  // bodies [begin, end) in Morton order
+  std::uint32_t end = 0;
+  std::uint32_t child = 0;     // first child (children are contiguous)
+  std::uint32_t children = 0;  // 0: a leaf
+};
+
+// What the build needs besides: mass, second and third moments about the
+// centre of mass (qxx = sum m sx^2, ..., oxxy = sum m sx^2 sy, ...).
+struct Moments {
+  double mass = 0.0;
+  double qxx = 0.0;
+  double qxy = 0.0;
+  double qyy = 0.0;
+  double oxxx = 0.0;
+  double oxxy = 0.0;
+  double oxyy = 0.0;
+  double oyyy = 0.0;
+};
+
+// Columns of equal length that grow together (the interaction lists).
+template <typename T, std::size_t K>
+struct Columns {
+  std::array<std::vector<T>, K> column;
+  std::size_t size = 0;
+
+  void clear() { size = 0; }
+  // Room for `more` rows after size; returns the first free row.
+  std::size_t make_room(std::size_t more) {
+    if (size + more > column[0].size()) {
+      const std::size_t capacity = std::max({size + more, 2 * column[0].size(), std::size_t{256}});
+      for (auto& c : column) c.resize(capacity);
+    }
+    return size;
+  }
+  T* operator[](std::size_t k) { return column[k].data(); }
+};
+
+// One group's interaction lists.
+template <typename T>
+struct Lists {
+  Columns<T, 3> body;                           // x, y, m
+  Columns<T, detail::Nodes<T>::kColumns> node;  // x, y, then the kMoments moments
+  Columns<T, detail::Nodes<T>::kColumns> far;   // the same, interpolated over the group
+  std::vector<T> tx;                            // float32 targets
+  std::vector<T> ty;
+};
+
+// A tree, or a part of one built on its own (the parallel build).
+struct Tree {
+  std::vector<Node> nodes;
+  std::vector<Moments> moments;
+  std::vector<std::uint32_t> groups;  // nodes whose bodies share a walk
+  int depth = 0;
+  std::size_t leaves = 0;
+
+  void reset() {
+    nodes.assign(1, Node{});
+    moments.assign(1, Moments{});
+    groups.clear();
+    depth = 0;
+    leaves = 0;
+  }
+};
+
+// A subtree left for the parallel build: its root's index in the whole tree,
+// its bodies and its depth.
+struct Pending {
+  std::uint32_t index = 0;
+  std::uint32_t begin = 0;
+  std::uint32_t end = 0;
+  int depth = 0;
+};
+
+// A group's bounding box and the origin of its float32 lists.
+struct GroupFrame {
+  double x0 = 0.0;
+  double x1 = 0.0;
+  double y0 = 0.0;
+  double y1 = 0.0;
+  double ox = 0.0;  // subtracted from positions, then scaled by `scale`
+  double oy = 0.0;
+  double scale = 1.0;
+  // The interpolation square: centre and half side (0: no far list).
+  double cx = 0.0;
+  double cy = 0.0;
+  double half = 0.0;
+  double far2 = 0.0;  // nodes whose centre of mass is farther than sqrt(far2) from (cx, cy)
+};
+
+// The number of threads for a step over n bodies.
+inline int team_for(std::size_t n, int threads) { return n < kParallelFrom ? 1 : threads; }
+
+}  // namespace calder::nbody::bh
+
+namespace calder::nbody {
+
+struct BarnesHut::Workspace {
+  BarnesHutStats stats;
+
+  // Build.
+  std::vector<std::uint64_t> keys;
+  std::vector<std::uint64_t> keys_tmp;
+  std::vector<std::uint32_t> order;  // order[r]: the body of Morton rank r
+  std::vector<std::uint32_t> order_tmp;
+  std::vector<std::size_t> radix_counts;  // per thread and bucket
+  std::vector<double> sx;                 // bodies in Morton order
+  std::vector<double> sy;
+  std::vector<double> sm;
+  std::vector<float> sm32;  // scaled masses, float32
+  bh::Tree tree;
+  std::vector<bh::Tree> parts;         // the subtrees, built in parallel
+  std::vector<bh::Pending> pending;    // their roots
+  std::vector<std::uint32_t> top;      // the nodes above them, in creation order
+  std::vector<std::size_t> part_base;  // where each part's nodes go in the tree
+  std::vector<double> node64;          // kMoments per node, as the float64 kernels read them
+  std::vector<float> node32;           // the same scaled for float32
+  double x0 = 0.0;                     // the root square [x0, x0 + side) x [y0, y0 + side)
+  double y0 = 0.0;
+  double side = 1.0;
+  double max_mass = 0.0;
+  double inv_theta = 0.0;  // 1 / theta, +inf for theta = 0
+  std::size_t leaf_size = 1;
+  std::size_t group_size = 1;
+
+  // Walk: sums in Morton order, and each thread's lists.
+  std::vector<double> sum_x;
+  std::vector<double> sum_y;
+  struct Scratch {
+    bh::Lists<double> lists64;
+    bh::Lists<float> lists32;
+    std::vector<std::uint32_t> stack;
+    std::uint64_t interactions = 0;
+    std::uint64_t node_interactions = 0;
+  };
+  std::vector<Scratch> scratch;
+
+  // barnes_hut_build.cpp
+  void build(std::span<const double> x, std::span<const double> y, std::span<const double> mass,
+             int threads);
+  void bound(std::span<const double> x, std::span<const double> y, int team);
+  void sort_bodies(std::span<const double> x, std::span<const double> y,
+                   std::span<const double> mass, int team);
+  void radix_sort_slice(std::size_t t, std::size_t nt, std::size_t lo, std::size_t hi);
+  void build_tree(int threads);
+  void build_parts(int team);
+  void merge_parts(int team);
+  int level_of(std::uint32_t begin, std::uint32_t end) const;
+  std::uint32_t split(bh::Tree& t, std::uint32_t index, std::uint32_t begin, std::uint32_t end,
+                      int level, std::uint32_t (&bounds)[5]) const;
+  void plan(std::uint32_t index, std::uint32_t begin, std::uint32_t end, int tree_depth,
+            std::size_t cutoff);
+  void build_node(bh::Tree& t, std::uint32_t index, std::uint32_t begin, std::uint32_t end,
+                  int tree_depth, bool in_group) const;
+  void finish_node(bh::Tree& t, std::uint32_t index) const;
+  void leaf_moments(bh::Node& node, bh::Moments& mo) const;
+  static void merge_moments(const bh::Tree& t, bh::Node& node, bh::Moments& mo);
+  void set_opening_radius(bh::Node& node) const;
+
+  // barnes_hut_moments.cpp
+  void prepare_kernel_inputs(const detail::FloatFrame& frame, bool float32, int team);
+
+  // barnes_hut_walk.cpp
+  void walk(const detail::LawParams& p, double scale, bool float32, int threads);
+  template <typename T>
+  void walk_group(std::uint32_t group, Scratch& s, const detail::KernelTable& k,
+                  const detail::LawParams& p, double scale);
+  bh::GroupFrame group_frame(const bh::Node& g, bool float32, double scale) const;
+  template <typename T>
+  void collect(const bh::GroupFrame& f, bool multipoles, Scratch& s, bh::Lists<T>& lists);
+  template <typename T>
+  void sum_far(const bh::Node& g, const bh::GroupFrame& f, const detail::KernelTable& k,
+               const detail::LawParams& p, bh::Lists<T>& lists);
+  template <typename T>
+  void sum_group(const bh::Node& g, const bh::GroupFrame& f, const detail::KernelTable& k,
+                 const detail::LawParams& p, Scratch& s, bh::Lists<T>& lists);
+};
+
+}  // namespace calder::nbody

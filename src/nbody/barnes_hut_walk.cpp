@@ -1,0 +1,310 @@
+// SPDX-License-Identifier: MIT
+// Barnes-Hut, the walk: per group (a node of <= group_size bodies), one walk
+// from the root; an accepted node goes to the node list (centre of mass,
+// mass, moments; for the clamped laws a point mass: those laws are not
+// harmonic, so their multipole expansion is not Newton's), or to the far
+// list when it is far from the group, the bodies of an opened leaf to the
+// body list. The kernels then sum the node and body lists for all the
+// group's bodies, and the far list at a few points of the group's square,
+// interpolated to the bodies; float32 lists are relative to the group's
+// centre. Groups go to threads dynamically; each body's sum is made by one
+// thread in a fixed order, so the results do not depend on the number of
+// threads.
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <cstring>
+#include <vector>
+
+#include "barnes_hut_tree.hpp"
+
+#if defined(_OPENMP)
+#include <omp.h>
+#endif
+
+namespace calder::nbody {
+
+namespace {
+// The far field of a group: the accepted nodes whose centre of mass lies
+// beyond kFarRatio half sides of the group's square from its centre are
+// summed at kStencil x kStencil points and interpolated (sum_far). At 4 half
+// sides the interpolation adds no measurable error to the multipole
+// expansion's (N = 10^6 disk: RMS 7.64e-4 with and without, theta 0.45).
+constexpr std::size_t kStencil = 4;
+constexpr double kFarRatio = 4.0;
+// Groups of at most this many bodies sum every node at each target (the
+// stencil would cost about as much).
+constexpr std::size_t kFarMinTargets = 32;
+
+// The Chebyshev points on [-1, 1] and the Lagrange basis' weights
+// 1 / prod_{j != i} (u_i - u_j).
+struct Stencil {
+  double u[kStencil];
+  double weight[kStencil];
+};
+const Stencil& stencil() {
+  static const Stencil s = [] {
+    Stencil t{};
+    constexpr double kPi = 3.141592653589793;
+    for (std::size_t i = 0; i < kStencil; ++i) {
+      t.u[i] = std::cos((2.0 * static_cast<double>(i) + 1.0) * kPi / (2.0 * kStencil));
+    }
+    for (std::size_t i = 0; i < kStencil; ++i) {
+      double d = 1.0;
+      for (std::size_t j = 0; j < kStencil; ++j) {
+        if (j != i) d *= t.u[i] - t.u[j];
+      }
+      t.weight[i] = 1.0 / d;
+    }
+    return t;
+  }();
+  return s;
+}
+}  // namespace
+
+void BarnesHut::Workspace::walk(const detail::LawParams& p, double scale, bool float32,
+                                int threads) {
+  const detail::KernelTable& k = detail::kernels();
+  const std::size_t n = sx.size();
+  sum_x.resize(n);  // zeroed group by group
+  sum_y.resize(n);
+  scratch.resize(static_cast<std::size_t>(threads));
+  for (auto& s : scratch) s.interactions = s.node_interactions = 0;
+  const auto groups = static_cast<std::ptrdiff_t>(tree.groups.size());
+#if defined(_OPENMP)
+#pragma omp parallel num_threads(bh::team_for(n, threads))
+#endif
+  {
+#if defined(_OPENMP)
+    Scratch& s = scratch[static_cast<std::size_t>(omp_get_thread_num())];
+#pragma omp for schedule(dynamic, 1)
+#else
+    Scratch& s = scratch[0];
+#endif
+    for (std::ptrdiff_t g = 0; g < groups; ++g) {
+      const std::uint32_t group = tree.groups[static_cast<std::size_t>(g)];
+      if (float32) {
+        walk_group<float>(group, s, k, p, scale);
+      } else {
+        walk_group<double>(group, s, k, p, scale);
+      }
+    }
+  }
+}
+
+template <typename T>
+void BarnesHut::Workspace::walk_group(std::uint32_t group, Scratch& s, const detail::KernelTable& k,
+                                      const detail::LawParams& p, double scale) {
+  constexpr bool kFloat = sizeof(T) == 4;
+  const bh::Node& g = tree.nodes[group];
+  const bh::GroupFrame f = group_frame(g, kFloat, scale);
+  bh::Lists<T>* lists;
+  if constexpr (kFloat) {
+    lists = &s.lists32;
+  } else {
+    lists = &s.lists64;
+  }
+  collect(f, p.law == Law::plummer, s, *lists);
+  sum_group(g, f, k, p, s, *lists);
+}
+
+// The group's bounding box; float32 lists are relative to its centre, in
+// the frame's scale.
+bh::GroupFrame BarnesHut::Workspace::group_frame(const bh::Node& g, bool float32,
+                                                 double scale) const {
+  bh::GroupFrame f;
+  f.x0 = f.x1 = sx[g.begin];
+  f.y0 = f.y1 = sy[g.begin];
+  for (std::uint32_t b = g.begin + 1; b < g.end; ++b) {
+    f.x0 = std::min(f.x0, sx[b]);
+    f.x1 = std::max(f.x1, sx[b]);
+    f.y0 = std::min(f.y0, sy[b]);
+    f.y1 = std::max(f.y1, sy[b]);
+  }
+  if (float32) {
+    f.ox = f.x0 + (f.x1 - f.x0) * 0.5;
+    f.oy = f.y0 + (f.y1 - f.y0) * 0.5;
+    f.scale = scale;
+  }
+  if (g.end - g.begin > kFarMinTargets) {
+    f.cx = f.x0 + (f.x1 - f.x0) * 0.5;
+    f.cy = f.y0 + (f.y1 - f.y0) * 0.5;
+    f.half = 0.5 * std::max(f.x1 - f.x0, f.y1 - f.y0);
+    const double r = kFarRatio * f.half;
+    f.far2 = f.half > 0.0 ? r * r : 0.0;
+  }
+  return f;
+}
+
+// The walk from the root: accepted nodes to the node list (multipoles) or
+// the body list (point masses), the bodies of opened leaves to the body list.
+template <typename T>
+void BarnesHut::Workspace::collect(const bh::GroupFrame& f, bool multipoles, Scratch& s,
+                                   bh::Lists<T>& lists) {
+  constexpr bool kFloat = sizeof(T) == 4;
+  const T* node_moments;
+  const T* body_mass;
+  if constexpr (kFloat) {
+    node_moments = node32.data();
+    body_mass = sm32.data();
+  } else {
+    node_moments = node64.data();
+    body_mass = sm.data();
+  }
+  auto& body = lists.body;
+  auto& near = lists.node;
+  auto& far = lists.far;
+  body.clear();
+  near.clear();
+  far.clear();
+  s.stack.clear();
+  s.stack.push_back(0);
+  while (!s.stack.empty()) {
+    const std::uint32_t index = s.stack.back();
+    s.stack.pop_back();
+    const bh::Node& n = tree.nodes[index];
+    const double dx = std::max(std::max(f.x0 - n.mx, n.mx - f.x1), 0.0);
+    const double dy = std::max(std::max(f.y0 - n.my, n.my - f.y1), 0.0);
+    if (dx * dx + dy * dy > n.open2) {
+      const T* m = node_moments + std::size_t{index} * bh::kMoments;
+      const T x = static_cast<T>((n.mx - f.ox) * f.scale);
+      const T y = static_cast<T>((n.my - f.oy) * f.scale);
+      if (multipoles) {
+        const double ex = n.mx - f.cx;
+        const double ey = n.my - f.cy;
+        auto& accepted = f.far2 > 0.0 && ex * ex + ey * ey > f.far2 ? far : near;
+        const std::size_t r = accepted.make_room(1);
+        accepted[0][r] = x;
+        accepted[1][r] = y;
+        for (std::size_t a = 0; a < bh::kMoments; ++a) accepted[2 + a][r] = m[a];
+        accepted.size = r + 1;
+      } else {  // a point mass
+        const std::size_t r = body.make_room(1);
+        body[0][r] = x;
+        body[1][r] = y;
+        body[2][r] = m[0];
+        body.size = r + 1;
+      }
+    } else if (n.children == 0) {
+      const std::size_t count = n.end - n.begin;
+      const std::size_t r = body.make_room(count);
+      if constexpr (kFloat) {
+        for (std::size_t b = 0; b < count; ++b) {
+          body[0][r + b] = static_cast<T>((sx[n.begin + b] - f.ox) * f.scale);
+          body[1][r + b] = static_cast<T>((sy[n.begin + b] - f.oy) * f.scale);
+        }
+      } else {
+        std::memcpy(body[0] + r, sx.data() + n.begin, count * sizeof(T));
+        std::memcpy(body[1] + r, sy.data() + n.begin, count * sizeof(T));
+      }
+      std::memcpy(body[2] + r, body_mass + n.begin, count * sizeof(T));
+      body.size = r + count;
+    } else {
+      for (std::uint32_t c = n.child + n.children; c-- > n.child;) s.stack.push_back(c);
+    }
+  }
+}
+
+// The far nodes' field, evaluated at kStencil x kStencil Chebyshev points of
+// the group's square and interpolated (a tensor product of Lagrange
+// polynomials of degree kStencil - 1) at each target: kStencil^2 node sums
+// instead of one per target.
+template <typename T>
+void BarnesHut::Workspace::sum_far(const bh::Node& g, const bh::GroupFrame& f,
+                                   const detail::KernelTable& k, const detail::LawParams& p,
+                                   bh::Lists<T>& lists) {
+  constexpr std::size_t S = kStencil;
+  const Stencil& st = stencil();
+  const auto& nodes_u = st.u;
+  T px[S * S];
+  T py[S * S];
+  for (std::size_t i = 0; i < S; ++i) {
+    for (std::size_t j = 0; j < S; ++j) {
+      px[i * S + j] = static_cast<T>((f.cx + f.half * nodes_u[i] - f.ox) * f.scale);
+      py[i * S + j] = static_cast<T>((f.cy + f.half * nodes_u[j] - f.oy) * f.scale);
+    }
+  }
+  double fx[S * S] = {};
+  double fy[S * S] = {};
+  detail::Nodes<T> far;
+  for (std::size_t c = 0; c < detail::Nodes<T>::kColumns; ++c) far.column[c] = lists.far[c];
+  far.n = lists.far.size;
+  if constexpr (sizeof(T) == 4) {
+    k.multipole32(px, py, S * S, far, p, fx, fy);
+  } else {
+    k.multipole64(px, py, S * S, far, p, fx, fy);
+  }
+  const auto basis = [&](double u, double(&l)[S]) {
+    for (std::size_t i = 0; i < S; ++i) {
+      double v = st.weight[i];
+      for (std::size_t j = 0; j < S; ++j) {
+        if (j != i) v *= u - nodes_u[j];
+      }
+      l[i] = v;
+    }
+  };
+  const double inv_half = 1.0 / f.half;
+  for (std::uint32_t b = g.begin; b < g.end; ++b) {
+    double lu[S];
+    double lv[S];
+    basis((sx[b] - f.cx) * inv_half, lu);
+    basis((sy[b] - f.cy) * inv_half, lv);
+    double ax = 0.0;
+    double ay = 0.0;
+    for (std::size_t i = 0; i < S; ++i) {
+      for (std::size_t j = 0; j < S; ++j) {
+        const double w = lu[i] * lv[j];
+        ax += w * fx[i * S + j];
+        ay += w * fy[i * S + j];
+      }
+    }
+    sum_x[b] += ax;
+    sum_y[b] += ay;
+  }
+}
+
+// Each target of the group: the accepted nodes (in walk order), then the
+// bodies, into sum_x, sum_y.
+template <typename T>
+void BarnesHut::Workspace::sum_group(const bh::Node& g, const bh::GroupFrame& f,
+                                     const detail::KernelTable& k, const detail::LawParams& p,
+                                     Scratch& s, bh::Lists<T>& lists) {
+  const std::size_t count = g.end - g.begin;
+  auto& body = lists.body;
+  auto& accepted = lists.node;
+  const std::size_t far_rows = lists.far.size > 0 ? kStencil * kStencil : 0;
+  s.interactions +=
+      static_cast<std::uint64_t>(count) * (body.size + accepted.size) + far_rows * lists.far.size;
+  s.node_interactions +=
+      static_cast<std::uint64_t>(count) * accepted.size + far_rows * lists.far.size;
+  double* out_x = sum_x.data() + g.begin;
+  double* out_y = sum_y.data() + g.begin;
+  std::fill(out_x, out_x + count, 0.0);
+  std::fill(out_y, out_y + count, 0.0);
+  detail::Nodes<T> node_list;
+  for (std::size_t c = 0; c < detail::Nodes<T>::kColumns; ++c) node_list.column[c] = accepted[c];
+  node_list.n = accepted.size;
+  const detail::Bodies<T> body_list{body[0], body[1], body[2], body.size};
+  if constexpr (sizeof(T) == 4) {
+    lists.tx.resize(count);
+    lists.ty.resize(count);
+    for (std::size_t t = 0; t < count; ++t) {
+      lists.tx[t] = static_cast<T>((sx[g.begin + t] - f.ox) * f.scale);
+      lists.ty[t] = static_cast<T>((sy[g.begin + t] - f.oy) * f.scale);
+    }
+    const T* tx = lists.tx.data();
+    const T* ty = lists.ty.data();
+    if (lists.far.size > 0) sum_far(g, f, k, p, lists);
+    if (node_list.n > 0) k.multipole32(tx, ty, count, node_list, p, out_x, out_y);
+    k.group32(tx, ty, nullptr, nullptr, count, body_list, p, out_x, out_y);
+  } else {
+    const T* tx = sx.data() + g.begin;
+    const T* ty = sy.data() + g.begin;
+    if (lists.far.size > 0) sum_far(g, f, k, p, lists);
+    if (node_list.n > 0) k.multipole64(tx, ty, count, node_list, p, out_x, out_y);
+    k.group64(tx, ty, count, body_list, p, out_x, out_y);
+  }
+}
+
+}  // namespace calder::nbody
