@@ -361,7 +361,8 @@ std::uint32_t BarnesHut::Workspace::split(Tree& t, std::uint32_t index, std::uin
   bounds[0] = begin;
   for (std::uint64_t d = 1; d < 4; ++d) {
     bounds[d] = static_cast<std::uint32_t>(
-        std::partition_point(keys.begin() + bounds[d - 1], keys.begin() + end,
+        std::partition_point(keys.begin() + static_cast<std::ptrdiff_t>(bounds[d - 1]),
+                             keys.begin() + static_cast<std::ptrdiff_t>(end),
                              [&](std::uint64_t key) { return ((key >> shift) & 3u) < d; }) -
         keys.begin());
   }
@@ -514,7 +515,7 @@ void BarnesHut::Workspace::build_tree(int threads) {
   const std::size_t cutoff =
       n < kParallelBuild ? n : std::max({std::size_t{n} / 64, group_size, leaf_size});
   plan(0, 0, n, 0, cutoff);
-  const int team = n < kParallelBuild ? 1 : threads;
+  [[maybe_unused]] const int team = n < kParallelBuild ? 1 : threads;
 
   if (parts.size() < pending.size()) parts.resize(pending.size());
   const auto count = static_cast<std::ptrdiff_t>(pending.size());
@@ -737,7 +738,8 @@ void BarnesHut::accelerations(std::span<const double> x, std::span<const double>
   const double q_scale = f32 ? frame.scale * frame.scale * frame.mass_scale : 1.0;
   const double m_scale = f32 ? frame.mass_scale : 1.0;
   const double o_scale = q_scale * (f32 ? frame.scale : 1.0);
-  const int team = n < 2000 ? 1 : threads;  // small trees: not worth waking threads
+  // Small trees: not worth waking threads (unused without OpenMP).
+  [[maybe_unused]] const int team = n < 2000 ? 1 : threads;
   const auto fill_moments = [&](auto* out) {
     using T = std::remove_pointer_t<decltype(out)>;
 #if defined(_OPENMP)

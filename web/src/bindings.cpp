@@ -26,6 +26,7 @@
 
 #include "calder/diagnostics.hpp"
 #include "calder/error.hpp"
+#include "calder/movers.hpp"
 #include "calder/nbody.hpp"
 #include "calder/render.hpp"
 #include "calder/scene.hpp"
@@ -363,6 +364,7 @@ val scene_list() {
 
 EMSCRIPTEN_BINDINGS(calder_web) {
   calder::nbody::install();  // scenes may ask for method = "direct" or "barnes_hut"
+  calder::movers::install();  // large worlds step through the tile kernels, as `calder run`
   emscripten::function("scenes", &scene_list);
   emscripten::class_<WebSimulation>("Simulation")
       .constructor<const std::string&, const val&>()
