@@ -220,6 +220,9 @@ if (writeAt > 0) {
   const before = existsSync(file) ? readFileSync(file, 'utf8') : '';
   const at = before.indexOf('\n## In the browser\n');
   const head = (at >= 0 ? before.slice(0, at) : before).replace(/\n*$/, '\n');
+  // What follows the section (the next "## " heading on) stays as it is.
+  const next = at >= 0 ? before.indexOf('\n## ', at + 1) : -1;
+  const tail = next >= 0 ? `\n${before.slice(next + 1)}` : '';
   const section = [
     '## In the browser',
     '',
@@ -232,10 +235,12 @@ if (writeAt > 0) {
     'compare figures within one run only (its load average is printed below the tables).',
     'Written by `scripts/web --bench` (`node web/bench/run.mjs --write',
     'docs/PERFORMANCE.md`), which replaces this section; `scripts/performance` keeps it.',
+    'In the SIMD table, the example 2.9 rows of "page / no SIMD" run the same code (the',
+    'page gives SIMD to the movers\' kernels only): their distance from 1 is this run\'s noise.',
     '',
     ...lines,
   ].join('\n');
-  writeFileSync(file, `${head}\n${section}\n`);
+  writeFileSync(file, `${head}\n${section}\n${tail}`);
   console.log(`wrote ${file}`);
 }
 
