@@ -71,6 +71,11 @@
       if (!core) throw new Error('calder: not ready yet (await calder.ready)');
       return core.scenes();
     },
+    // The instruction sets of the module's kernels: {movers, nbody}.
+    kernels() {
+      if (!core) throw new Error('calder: not ready yet (await calder.ready)');
+      return core.kernels();
+    },
     // Starts a scene: a built-in name or scene text. options: seed (0..2^32-1),
     // count (bodies of the scenes made to scale), name (the file named in
     // error messages), mousePressed ('100-160' or [[100, 160], ...]), mouse

@@ -55,7 +55,7 @@ void install();
 std::string unsupported(const World& world);
 
 // The instruction set of the kernels in use ("avx512", "avx2+fma", "sse2",
-// "generic"; see calder::nbody::kernel_name()).
+// "wasm-simd128", "generic"; see calder::nbody::kernel_name()).
 const char* kernel_name();
 
 // The number of threads that threads = 0 means (1 without OpenMP).

@@ -23,6 +23,8 @@ const char* CALDER_MOVERS_CAT(kernel_name_, CALDER_KERNEL_VARIANT)() {
   return "avx2+fma";
 #elif defined(__SSE2__)
   return "sse2";
+#elif defined(__wasm_simd128__)
+  return "wasm-simd128";
 #else
   return "generic";
 #endif

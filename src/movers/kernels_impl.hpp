@@ -135,6 +135,12 @@ template <class V>
     if constexpr (!single) return V(_mm256_sqrt_pd(__m256d(v)));
   }
 #endif
+#if defined(__wasm_simd128__)  // (clang leaves the lane loop below scalar)
+  if constexpr (sizeof(V) == 16) {
+    if constexpr (single) return V(__builtin_wasm_sqrt_f32x4(v));
+    if constexpr (!single) return V(__builtin_wasm_sqrt_f64x2(v));
+  }
+#endif
   constexpr int lanes = static_cast<int>(sizeof(V) / sizeof(v[0]));
   V out = v;
   for (int l = 0; l < lanes; ++l) out[l] = std::sqrt(v[l]);

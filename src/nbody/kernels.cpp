@@ -195,6 +195,7 @@ constexpr int kFloatEstimateSteps = 3;
 // result is (approximately) `scale` / sqrt(r2) with scale = 2^(kNewtonSteps'
 // last step): the last Newton step y (3 - r2 y^2) leaves out its factor 1/2,
 // which the caller folds into a constant (see kLastStepScale).
+// (Unused where no kernel takes an estimate: clang for wasm32 says so.)
 template <typename V>
 [[maybe_unused]] constexpr typename Scalar<V>::type kLastStepScale = kNewtonSteps<V> > 0 ? 2 : 1;
 
