@@ -64,6 +64,7 @@ int main(int argc, char** argv) {
   const int small_calls = 200'000;
   const int rain_steps = 1000;
   const std::size_t rain_bodies = 100'000;
+  const int add_tries = 10;                      // as bench_python.py's ADD_TRIES
   const double width = 6400.0, height = 2400.0;  // the rain scene's density at 10^5 drops
 
   double small_best = 1e300, rain_best = 1e300, add_best = 1e300;
@@ -80,15 +81,17 @@ int main(int argc, char** argv) {
     // Added again into the emptied world: its memory is mapped already, so
     // this times the adding, not the system's page faults.
     calder::World added = rain(many, width, height, false);
-    added.clear_bodies();
-    start = Clock::now();
-    added.add_bodies({.x = many.x,
-                      .y = many.y,
-                      .vx = many.vx,
-                      .vy = many.vy,
-                      .mass = many.mass,
-                      .radius = many.radius});
-    add_best = std::min(add_best, seconds_since(start));
+    for (int k = 0; k < add_tries; ++k) {
+      added.clear_bodies();
+      start = Clock::now();
+      added.add_bodies({.x = many.x,
+                        .y = many.y,
+                        .vx = many.vx,
+                        .vy = many.vy,
+                        .mass = many.mass,
+                        .radius = many.radius});
+      add_best = std::min(add_best, seconds_since(start));
+    }
 
     added.add(calder::Gravity{.g = {0.0, 0.1}, .scale_by_mass = true});
     added.add(calder::Drag{.c = 0.01});

@@ -4,7 +4,8 @@
 from __future__ import annotations
 
 import enum
-from typing import Callable, Iterator, Optional, Sequence, Tuple, TypeVar, Union, overload
+from typing import (Callable, Iterator, Optional, Sequence, TextIO, Tuple, TypeVar, Union,
+                    overload)
 
 import numpy as np
 import numpy.typing as npt
@@ -517,12 +518,33 @@ class Simulation:
              mouse: Optional[VecLike] = None) -> None: ...
     def run(self, frames: int) -> None: ...
     def reset_bodies(self) -> None: ...
+    def set_bodies(self, x: ArrayLike, y: ArrayLike, vx: ArrayLike = 0.0, vy: ArrayLike = 0.0,
+                   mass: ArrayLike = 1.0, radius: ArrayLike = 0.0,
+                   friction: Optional[ArrayLike] = None, drag_area: ArrayLike = 1.0) -> None:
+        """Replaces the bodies by these, in order (calder run --state), all or none."""
     @property
     def world(self) -> World: ...
     @property
     def scene(self) -> Scene: ...
     @property
     def frame(self) -> int: ...
+
+class FixedStep:
+    """Whole steps of a fixed length from real elapsed time, the rest carried over."""
+    steps_per_second: float
+    def __init__(self, steps_per_second: float = 60.0, max_steps: int = 8) -> None: ...
+    def advance(self, target: Union[World, Simulation, Callable[[], object]],
+                elapsed_seconds: float) -> int: ...
+    @property
+    def alpha(self) -> float: ...
+    def reset(self) -> None: ...
+
+def format_number(value: float) -> str: ...
+
+class TrajectoryWriter:
+    """CSV `frame,body,x,y,vx,vy` into a text stream, as calder run --trajectory."""
+    def __init__(self, out: TextIO) -> None: ...
+    def write(self, frame: int, world: World) -> None: ...
 
 # --- drawing -----------------------------------------------------------------------
 

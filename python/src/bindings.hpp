@@ -9,7 +9,9 @@
 
 #include <calder/world.hpp>
 #include <cstdint>
+#include <optional>
 #include <span>
+#include <vector>
 
 namespace calder::python {
 
@@ -51,6 +53,39 @@ void without_gil(World& world, const char* where, Function&& f) {
 // A read-only numpy view of one of the world's arrays. Its base keeps `owner`
 // (the Python object that keeps the World alive) and counts as a live view.
 py::array body_view(const py::object& owner, const World& world, std::span<const double> data);
+
+// One column of bodies' values from Python: a 1-D array, or one number for
+// all bodies; viewed without a copy when it is already a contiguous float64
+// array. Anything else raises TypeError naming `where` and `name`.
+struct Column {
+  py::array_t<double, py::array::c_style | py::array::forcecast> values;
+  double scalar = 0.0;
+  bool is_array = false;
+
+  Column(const py::handle& given, const char* where, const char* name);
+  [[nodiscard]] std::span<const double> span() const;
+};
+
+// The arguments of World.add_bodies and Simulation.set_bodies (x, y, vx, vy,
+// mass, radius, friction or None, drag_area), as World::add_bodies' columns.
+class BodyArguments {
+ public:
+  BodyArguments(const char* where, const py::handle& x, const py::handle& y, const py::handle& vx,
+                const py::handle& vy, const py::handle& mass, const py::handle& radius,
+                const py::object& friction, const py::handle& drag_area);
+  // True when an argument is an empty array: no bodies (World::add_bodies
+  // would read an empty column as "not given" and add one body).
+  [[nodiscard]] bool empty() const { return empty_; }
+  [[nodiscard]] BodyColumns columns() const;
+  // One BodyDef per body, checked as World::add_bodies checks them (its
+  // message, with `where` in place of "World::add_bodies").
+  [[nodiscard]] std::vector<BodyDef> body_defs(const char* where) const;
+
+ private:
+  Column x_, y_, vx_, vy_, mass_, radius_, drag_area_;
+  std::optional<Column> friction_;
+  bool empty_ = false;
+};
 
 // The Python exception type calder.Error (a ValueError).
 py::handle error_type();

@@ -4,11 +4,14 @@
 #include <pybind11/operators.h>
 #include <pybind11/stl.h>
 
+#include <calder/fixed_step.hpp>
 #include <calder/render.hpp>
 #include <calder/scene.hpp>
 #include <calder/scene_file.hpp>
+#include <calder/trajectory.hpp>
 #include <cstring>
 #include <filesystem>
+#include <sstream>
 #include <string>
 
 #include "bindings.hpp"
@@ -32,6 +35,36 @@ py::array_t<std::uint8_t> image_of(const Canvas& canvas) {
   std::memcpy(image.mutable_data(), rgba.data(), rgba.size());
   return image;
 }
+
+// calder::TrajectoryWriter into a Python text stream (anything with
+// write(str)): each call's rows are formatted by the C++ writer into a
+// buffer, then handed to the stream in one write.
+class PyTrajectoryWriter {
+ public:
+  explicit PyTrajectoryWriter(py::object out)
+      : out_(checked_stream(std::move(out))), writer_(buffer_) {
+    flush();
+  }
+  void write(std::int64_t frame, const World& world) {
+    writer_.write(frame, world);
+    flush();
+  }
+
+ private:
+  static py::object checked_stream(py::object out) {
+    if (!py::hasattr(out, "write")) {
+      throw py::type_error("TrajectoryWriter: out must have write(str), as a text file has");
+    }
+    return out;
+  }
+  void flush() {
+    out_.attr("write")(buffer_.str());
+    buffer_.str({});
+  }
+  py::object out_;
+  std::ostringstream buffer_;
+  TrajectoryWriter writer_;
+};
 
 }  // namespace
 
@@ -117,11 +150,77 @@ void bind_scene_render(py::module_& m) {
              require_resizable(s.world(), "Simulation.reset_bodies", false);
              s.reset_bodies();
            })
+      .def(
+          "set_bodies",
+          [](Simulation& s, const py::handle& x, const py::handle& y, const py::handle& vx,
+             const py::handle& vy, const py::handle& mass, const py::handle& radius,
+             const py::object& friction, const py::handle& drag_area) {
+            const char* where = "Simulation.set_bodies";
+            const BodyArguments arguments(where, x, y, vx, vy, mass, radius, friction, drag_area);
+            // The world's arrays are replaced (the old ones freed): no view may be alive.
+            require_resizable(s.world(), where, true);
+            s.set_bodies(arguments.body_defs(where));
+          },
+          py::arg("x"), py::arg("y"), py::arg("vx") = 0.0, py::arg("vy") = 0.0,
+          py::arg("mass") = 1.0, py::arg("radius") = 0.0, py::arg("friction") = py::none(),
+          py::arg("drag_area") = 1.0,
+          "Replaces the bodies by these, in order (calder run --state), all or none.\n"
+          "Arguments as World.add_bodies: arrays, or one number for all bodies.\n"
+          "The fields, time and generator stay; the mouse lets go of a tossed body.")
       .def_property_readonly(
           "world", [](Simulation& s) -> World& { return s.world(); },
           py::return_value_policy::reference_internal)
       .def_property_readonly("scene", &Simulation::scene)
       .def_property_readonly("frame", &Simulation::frame);
+
+  py::class_<FixedStep>(m, "FixedStep",
+                        "A fixed time step for real-time use: collects elapsed real time and\n"
+                        "runs as many whole steps as fit, carrying the remainder; alpha tells\n"
+                        "how far the leftover is into the next step (for drawing in between).\n"
+                        "At most max_steps per advance: time beyond that is dropped.")
+      .def(py::init<double, int>(), py::arg("steps_per_second") = 60.0, py::arg("max_steps") = 8)
+      .def(
+          "advance",
+          [](FixedStep& pacer, const py::object& target, double elapsed_seconds) {
+            const char* where = "FixedStep.advance";
+            int steps = 0;
+            if (py::isinstance<World>(target)) {
+              World& world = target.cast<World&>();
+              without_gil(world, where, [&] { steps = pacer.advance(world, elapsed_seconds); });
+            } else if (py::isinstance<Simulation>(target)) {
+              Simulation& simulation = target.cast<Simulation&>();
+              without_gil(simulation.world(), where, [&] {
+                steps = pacer.advance(elapsed_seconds, [&] { simulation.step(); });
+              });
+            } else if (PyCallable_Check(target.ptr()) != 0) {
+              steps = pacer.advance(elapsed_seconds, [&] { target(); });
+            } else {
+              throw py::type_error(std::string(where) +
+                                   ": target must be a World, a Simulation or a callable");
+            }
+            return steps;
+          },
+          py::arg("target"), py::arg("elapsed_seconds"),
+          "Adds elapsed_seconds (>= 0) of real time and steps target once per step\n"
+          "due: a World (world.step()), a Simulation (its scripted frame) or a\n"
+          "function of no arguments. Returns the number of steps taken.")
+      .def_property_readonly("alpha", &FixedStep::alpha,
+                             "Fraction of a step in the carried-over time, in [0, 1)")
+      .def_property("steps_per_second", &FixedStep::steps_per_second,
+                    &FixedStep::set_steps_per_second, "Steps per second of real time (> 0)")
+      .def("reset", &FixedStep::reset, "Drops carried-over time (e.g. after a pause)");
+
+  m.def("format_number", &format_number, py::arg("value"),
+        "The shortest decimal form that reads back to the same float ('0.1'); 'nan', 'inf'");
+  py::class_<PyTrajectoryWriter>(
+      m, "TrajectoryWriter",
+      "Writes a trajectory as CSV, `frame,body,x,y,vx,vy` (calder run --trajectory),\n"
+      "into a text stream: the header at once, then one row per body per write().\n"
+      "Numbers in their shortest exact form: the file reads back to the same bits.")
+      .def(py::init<py::object>(), py::arg("out"),
+           "out: anything with write(str), e.g. open(path, 'w')")
+      .def("write", &PyTrajectoryWriter::write, py::arg("frame"), py::arg("world"),
+           "One row per body of the world, all with this frame number");
 
   // --- drawing ---
   py::class_<Color>(m, "Color", "RGBA, each in [0, 1]")

@@ -15,8 +15,10 @@
 #include <calder/error.hpp>
 #include <calder/trajectory.hpp>
 #include <calder/world.hpp>
+#include <cmath>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "bindings.hpp"
@@ -35,50 +37,14 @@ BodyId id_of(const World& world, std::int64_t index, const char* where) {
   return BodyId{static_cast<std::uint32_t>(index)};
 }
 
-// One column of add_bodies or of a bulk setter: a 1-D array, or one number
-// for all bodies; viewed without a copy when it is already float64.
-struct Column {
-  py::array_t<double, py::array::c_style | py::array::forcecast> values;
-  double scalar = 0.0;
-  bool is_array = false;
-
-  Column(const py::handle& given, const char* where, const char* name) {
-    if (py::isinstance<py::float_>(given) || py::isinstance<py::int_>(given)) {
-      scalar = given.cast<double>();
-      return;
-    }
-    is_array = true;
-    values = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(given);
-    if (!values || values.ndim() != 1) {
-      throw py::type_error(std::string(where) + ": " + name +
-                           " must be a number or a 1-D array of numbers");
-    }
-  }
-  [[nodiscard]] std::span<const double> span() const {
-    if (!is_array) return {&scalar, 1};
-    return {values.data(), static_cast<std::size_t>(values.shape(0))};
-  }
-};
-
 py::object add_bodies(World& world, const py::handle& x, const py::handle& y, const py::handle& vx,
                       const py::handle& vy, const py::handle& mass, const py::handle& radius,
                       const py::object& friction, const py::handle& drag_area) {
   const char* where = "World.add_bodies";
-  const Column cx(x, where, "x"), cy(y, where, "y"), cvx(vx, where, "vx"), cvy(vy, where, "vy"),
-      cmass(mass, where, "mass"), cradius(radius, where, "radius"),
-      carea(drag_area, where, "drag_area");
-  std::optional<Column> cfriction;
-  if (!friction.is_none()) cfriction.emplace(friction, where, "friction");
+  const BodyArguments arguments(where, x, y, vx, vy, mass, radius, friction, drag_area);
   require_resizable(world, where, true);
-  const BodyColumns columns{cx.span(),
-                            cy.span(),
-                            cvx.span(),
-                            cvy.span(),
-                            cmass.span(),
-                            cradius.span(),
-                            cfriction ? cfriction->span() : std::span<const double>{},
-                            carea.span()};
-  const std::size_t first = world.add_bodies(columns).index;  // all or nothing
+  const std::size_t first =
+      arguments.empty() ? world.body_count() : world.add_bodies(arguments.columns()).index;
   return py::module_::import("builtins").attr("range")(first, world.body_count());
 }
 
@@ -112,6 +78,100 @@ py::array view(const py::object& self, std::span<const double> BodyView::*column
 }
 
 }  // namespace
+
+Column::Column(const py::handle& given, const char* where, const char* name) {
+  if (py::isinstance<py::float_>(given) || py::isinstance<py::int_>(given)) {
+    scalar = given.cast<double>();
+    return;
+  }
+  is_array = true;
+  values = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(given);
+  if (!values || values.ndim() != 1) {
+    throw py::type_error(std::string(where) + ": " + name +
+                         " must be a number or a 1-D array of numbers");
+  }
+}
+
+std::span<const double> Column::span() const {
+  if (!is_array) return {&scalar, 1};
+  return {values.data(), static_cast<std::size_t>(values.shape(0))};
+}
+
+BodyArguments::BodyArguments(const char* where, const py::handle& x, const py::handle& y,
+                             const py::handle& vx, const py::handle& vy, const py::handle& mass,
+                             const py::handle& radius, const py::object& friction,
+                             const py::handle& drag_area)
+    : x_(x, where, "x"),
+      y_(y, where, "y"),
+      vx_(vx, where, "vx"),
+      vy_(vy, where, "vy"),
+      mass_(mass, where, "mass"),
+      radius_(radius, where, "radius"),
+      drag_area_(drag_area, where, "drag_area") {
+  if (!friction.is_none()) friction_.emplace(friction, where, "friction");
+  const std::pair<const char*, const Column*> named[] = {
+      {"x", &x_},
+      {"y", &y_},
+      {"vx", &vx_},
+      {"vy", &vy_},
+      {"mass", &mass_},
+      {"radius", &radius_},
+      {"friction", friction_ ? &*friction_ : nullptr},
+      {"drag_area", &drag_area_}};
+  const char* empty_name = nullptr;
+  const char* longest_name = nullptr;
+  std::size_t longest = 0;
+  for (const auto& [name, column] : named) {
+    if (column == nullptr || !column->is_array) continue;
+    const std::size_t size = column->span().size();
+    if (size == 0 && empty_name == nullptr) empty_name = name;
+    if (size > longest) {
+      longest = size;
+      longest_name = name;
+    }
+  }
+  if (empty_name != nullptr && longest > 1) {
+    throw Error(std::string(where) + ": " + empty_name + " is empty but " + longest_name + " has " +
+                std::to_string(longest) + " values");
+  }
+  empty_ = empty_name != nullptr;
+}
+
+BodyColumns BodyArguments::columns() const {
+  return {x_.span(),
+          y_.span(),
+          vx_.span(),
+          vy_.span(),
+          mass_.span(),
+          radius_.span(),
+          friction_ ? friction_->span() : std::span<const double>{},
+          drag_area_.span()};
+}
+
+std::vector<BodyDef> BodyArguments::body_defs(const char* where) const {
+  // World::add_bodies checks and spreads the columns (one value for all,
+  // defaults) into a scratch world: one piece of code for what a column means.
+  if (empty_) return {};
+  World scratch;
+  try {
+    scratch.add_bodies(columns());
+  } catch (const Error& e) {
+    const std::string message = e.what();
+    const std::string prefix = "World::add_bodies";
+    throw Error(message.starts_with(prefix) ? where + message.substr(prefix.size()) : message);
+  }
+  const BodyView b = scratch.bodies();
+  std::vector<BodyDef> defs(b.size());
+  for (std::size_t i = 0; i < b.size(); ++i) {
+    defs[i] = {b.position(i),
+               b.velocity(i),
+               b.mass[i],
+               b.radius[i],
+               std::isnan(b.friction[i]) ? std::nullopt : std::optional<double>(b.friction[i]),
+               b.drag_area[i]};
+  }
+  return defs;
+}
 
 void bind_world(py::module_& m) {
   py::enum_<Integrator>(m, "Integrator")
