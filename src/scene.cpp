@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <cmath>
 #include <string>
+#include <string_view>
+#include <type_traits>
 #include <utility>
 #include <variant>
 
@@ -41,6 +43,28 @@ void require_draw(const Draw& d, const std::string& where, const char* what, boo
 }
 
 }  // namespace
+
+bool can_follow_mouse(const Field& field) {
+  return std::visit([](const auto& f) { return has_position<std::decay_t<decltype(f)>>(); }, field);
+}
+
+std::string kinds_following_mouse() {
+  std::string out;
+  const auto add = [&]<class F>() {
+    if (!has_position<F>()) return;
+    if (!out.empty()) out += " or ";
+    const std::string name = FieldKind<F>::name;
+    out +=
+        (std::string_view("aeiou").find(name[0]) != std::string_view::npos ? "an " : "a ") + name;
+  };
+  [&]<std::size_t... I>(std::index_sequence<I...>) {
+    (add.template operator()<std::variant_alternative_t<I, Field>>(), ...);
+  }
+  (std::make_index_sequence<std::variant_size_v<Field>>());
+  return out;
+}
+
+bool can_be_dragged(const Field& field) { return std::holds_alternative<Attractor>(field); }
 
 double Draw::sample(Random& rng, std::size_t index) const {
   switch (kind) {
@@ -136,12 +160,10 @@ void Scene::validate() const {
     } catch (const Error& e) {
       throw Error(where + ": fields[" + std::to_string(k) + "]: " + e.what());
     }
-    const bool positioned =
-        std::holds_alternative<Fan>(f.field) || std::holds_alternative<Attractor>(f.field);
-    if (f.binding.follow_mouse && !positioned) {
-      throw Error(w + ": only a fan or an attractor can follow the mouse");
+    if (f.binding.follow_mouse && !can_follow_mouse(f.field)) {
+      throw Error(w + ": only " + kinds_following_mouse() + " can follow the mouse");
     }
-    if (f.binding.draggable && !std::holds_alternative<Attractor>(f.field)) {
+    if (f.binding.draggable && !can_be_dragged(f.field)) {
       throw Error(w + ": only an attractor can be dragged");
     }
   }
@@ -279,8 +301,14 @@ void Simulation::step(const InputState& input) {
       std::visit([&](auto& f) { f.enabled = input.mouse_pressed; }, field);
     }
     if (b.follow_mouse) {
-      if (auto* fan = std::get_if<Fan>(&field)) fan->position = input.mouse;
-      if (auto* attractor = std::get_if<Attractor>(&field)) attractor->position = input.mouse;
+      std::visit(
+          [&](auto& f) {
+            using Kind = FieldKind<std::decay_t<decltype(f)>>;
+            if constexpr (has_position<std::decay_t<decltype(f)>>()) {
+              f.*Kind::position = input.mouse;
+            }
+          },
+          field);
     }
   }
   was_pressed_ = input.mouse_pressed;

@@ -17,6 +17,8 @@
 #include <functional>
 #include <optional>
 #include <span>
+#include <string>
+#include <tuple>
 #include <variant>
 
 #include "calder/forces.hpp"
@@ -242,6 +244,193 @@ void validate(const Field& field);
 
 // A field's name as error messages and scene files spell it ("gravity", ...).
 const char* field_name(const Field& field);
+
+// --- every field kind described once ---
+//
+// FieldKind<F> describes the field kind F: its name and its parameters, each
+// with its scene-file key, the values it accepts and when a file lists it.
+// field_name, validate, the scene reader and the TOML writer all work from
+// it (they std::visit Field, so a kind without a FieldKind doesn't compile);
+// what a kind does to the bodies is in accumulate (fields.cpp).
+
+// The values a parameter accepts (every number of a Vec2 or a Rect: finite).
+enum class Range {
+  finite,
+  positive,
+  non_negative,
+  // [0, 1]. A scene file's reader checks >= 0 at the value, validate the rest.
+  unit_interval,
+};
+
+template <class F, class T>
+struct Parameter {
+  const char* key;  // in scene files and messages
+  T F::*member;
+  Range range = Range::finite;
+  // When to_toml writes it (nullptr: always; false: left out, so the default applies).
+  bool (*written)(const F&) = nullptr;
+};
+
+// Specialised for every alternative of Field below. Besides name and
+// parameters a kind may have:
+//   static constexpr bool in_scene_files = false;  // C++ code, no scene-file form
+//   static constexpr auto position = &F::position; // it can follow the mouse
+//   static void check(const F&, const std::string& where);  // rules across parameters
+template <class F>
+struct FieldKind;
+
+namespace field_kind_detail {
+constexpr bool accumulating(const NoiseWind& f) { return f.accumulate; }
+constexpr bool fast_method(const MutualAttraction& f) { return f.method != NBodyMethod::exact; }
+}  // namespace field_kind_detail
+
+template <>
+struct FieldKind<Gravity> {
+  static constexpr const char* name = "gravity";
+  static constexpr auto parameters = std::tuple{
+      Parameter<Gravity, Vec2>{"g", &Gravity::g},
+      Parameter<Gravity, bool>{"scale_by_mass", &Gravity::scale_by_mass},
+  };
+};
+
+template <>
+struct FieldKind<Wind> {
+  static constexpr const char* name = "wind";
+  static constexpr auto parameters = std::tuple{Parameter<Wind, Vec2>{"force", &Wind::force}};
+};
+
+template <>
+struct FieldKind<NoiseWind> {
+  static constexpr const char* name = "noise_wind";
+  static constexpr auto parameters = std::tuple{
+      Parameter<NoiseWind, double>{"strength", &NoiseWind::strength},
+      Parameter<NoiseWind, double>{"rate", &NoiseWind::rate},
+      Parameter<NoiseWind, double>{"offset", &NoiseWind::offset},
+      Parameter<NoiseWind, bool>{"accumulate", &NoiseWind::accumulate, Range::finite,
+                                 field_kind_detail::accumulating},
+  };
+};
+
+template <>
+struct FieldKind<Helium> {
+  static constexpr const char* name = "helium";
+  static constexpr auto parameters = std::tuple{Parameter<Helium, double>{"lift", &Helium::lift}};
+};
+
+template <>
+struct FieldKind<Fan> {
+  static constexpr const char* name = "fan";
+  static constexpr auto parameters = std::tuple{
+      Parameter<Fan, Vec2>{"position", &Fan::position},
+      Parameter<Fan, double>{"strength", &Fan::strength},
+      Parameter<Fan, double>{"reach", &Fan::reach, Range::positive},
+  };
+  static constexpr auto position = &Fan::position;
+};
+
+template <>
+struct FieldKind<EdgeForce> {
+  static constexpr const char* name = "edge_force";
+  static constexpr auto parameters = std::tuple{
+      Parameter<EdgeForce, double>{"strength", &EdgeForce::strength},
+      Parameter<EdgeForce, double>{"margin", &EdgeForce::margin, Range::positive},
+  };
+};
+
+template <>
+struct FieldKind<Friction> {
+  static constexpr const char* name = "friction";
+  static constexpr auto parameters = std::tuple{
+      Parameter<Friction, double>{"mu", &Friction::mu, Range::non_negative},
+      Parameter<Friction, double>{"normal", &Friction::normal, Range::non_negative},
+      Parameter<Friction, Edge>{"surface", &Friction::surface},
+      Parameter<Friction, double>{"tolerance", &Friction::tolerance, Range::non_negative},
+      Parameter<Friction, bool>{"never_reverse", &Friction::never_reverse},
+  };
+};
+
+template <>
+struct FieldKind<Liquid> {
+  static constexpr const char* name = "liquid";
+  static constexpr auto parameters = std::tuple{
+      Parameter<Liquid, Rect>{"region", &Liquid::region},  // w and h >= 0
+      Parameter<Liquid, double>{"c", &Liquid::c, Range::non_negative},
+      Parameter<Liquid, bool>{"never_reverse", &Liquid::never_reverse},
+  };
+};
+
+template <>
+struct FieldKind<Drag> {
+  static constexpr const char* name = "drag";
+  static constexpr auto parameters = std::tuple{
+      Parameter<Drag, double>{"c", &Drag::c, Range::non_negative},
+      Parameter<Drag, bool>{"never_reverse", &Drag::never_reverse},
+  };
+};
+
+template <>
+struct FieldKind<Lift> {
+  static constexpr const char* name = "lift";
+  static constexpr auto parameters =
+      std::tuple{Parameter<Lift, double>{"coefficient", &Lift::coefficient}};
+};
+
+template <>
+struct FieldKind<Attractor> {
+  static constexpr const char* name = "attractor";
+  static constexpr auto parameters = std::tuple{
+      Parameter<Attractor, Vec2>{"position", &Attractor::position},
+      Parameter<Attractor, double>{"mass", &Attractor::mass, Range::positive},
+      Parameter<Attractor, AttractionLaw>{"law", &Attractor::law},
+  };
+  static constexpr auto position = &Attractor::position;
+};
+
+template <>
+struct FieldKind<MutualAttraction> {
+  static constexpr const char* name = "mutual_attraction";
+  using M = MutualAttraction;
+  static constexpr auto parameters = std::tuple{
+      Parameter<M, AttractionLaw>{"law", &M::law},
+      Parameter<M, PairOrder>{"order", &M::order},
+      Parameter<M, NBodyMethod>{"method", &M::method, Range::finite,
+                                field_kind_detail::fast_method},
+      Parameter<M, double>{"theta", &M::theta, Range::unit_interval,
+                           field_kind_detail::fast_method},
+      Parameter<M, bool>{"single_precision", &M::single_precision, Range::finite,
+                         field_kind_detail::fast_method},
+      Parameter<M, int>{"threads", &M::threads, Range::non_negative,
+                        field_kind_detail::fast_method},
+      Parameter<M, std::optional<CentralBody>>{"central", &M::central},  // position, mass > 0
+  };
+  // The fast methods support the inverse-square law only.
+  static void check(const MutualAttraction& field, const std::string& where);
+};
+
+template <>
+struct FieldKind<CustomForce> {
+  static constexpr const char* name = "custom_force";
+  static constexpr auto parameters = std::tuple{};
+  static constexpr bool in_scene_files = false;
+  // The force function is not empty.
+  static void check(const CustomForce& field, const std::string& where);
+};
+
+// Whether a scene file can hold this kind of field.
+template <class F>
+constexpr bool in_scene_files() {
+  if constexpr (requires { FieldKind<F>::in_scene_files; }) {
+    return FieldKind<F>::in_scene_files;
+  } else {
+    return true;
+  }
+}
+
+// Whether this kind has a position that can follow the mouse (FieldKind::position).
+template <class F>
+constexpr bool has_position() {
+  return requires { FieldKind<F>::position; };
+}
 
 // Adds the field's acceleration (force / mass, one body at a time) to
 // (ax, ay) for bodies [first, last). Does nothing when the field is disabled.
