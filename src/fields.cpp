@@ -66,6 +66,32 @@ void accumulate_each(const FieldContext& c, std::size_t first, std::size_t last,
   for (std::size_t i = first; i < last; ++i) add_force(ax, ay, i, force_of(i), c.bodies.mass[i]);
 }
 
+// Friction on the bodies of the range that touch its surface.
+void accumulate_friction(const Friction& f, const FieldContext& c, std::size_t first,
+                         std::size_t last, std::span<double> ax, std::span<double> ay) {
+  const BodyView& b = c.bodies;
+  for (std::size_t i = first; i < last; ++i) {
+    if (!touches_edge(f.surface, b.position(i), b.radius[i], c.width, c.height, f.tolerance)) {
+      continue;
+    }
+    Vec2 force = friction(b.velocity(i), b.friction_or(i, f.mu), f.normal);
+    if (f.never_reverse) force = limit_drag(force, b.velocity(i), b.mass[i], c.dt);
+    add_force(ax, ay, i, force, b.mass[i]);
+  }
+}
+
+// Drag on the bodies of the range inside the liquid.
+void accumulate_liquid(const Liquid& f, const FieldContext& c, std::size_t first, std::size_t last,
+                       std::span<double> ax, std::span<double> ay) {
+  const BodyView& b = c.bodies;
+  for (std::size_t i = first; i < last; ++i) {
+    if (!f.contains(b.position(i))) continue;
+    Vec2 force = drag(b.velocity(i), f.c, b.drag_area[i]);
+    if (f.never_reverse) force = limit_drag(force, b.velocity(i), b.mass[i], c.dt);
+    add_force(ax, ay, i, force, b.mass[i]);
+  }
+}
+
 std::atomic<MutualAttractionBackend> mutual_backend{nullptr};
 
 void accumulate_mutual(const MutualAttraction& f, const FieldContext& c, std::size_t first,
@@ -257,25 +283,10 @@ void accumulate(const Field& field, const FieldContext& c, std::size_t first, st
             });
           },
           [&](const Friction& f) {
-            if (!f.enabled) return;
-            for (std::size_t i = first; i < last; ++i) {
-              if (!touches_edge(f.surface, b.position(i), b.radius[i], c.width, c.height,
-                                f.tolerance)) {
-                continue;
-              }
-              Vec2 force = friction(b.velocity(i), b.friction_or(i, f.mu), f.normal);
-              if (f.never_reverse) force = limit_drag(force, b.velocity(i), b.mass[i], c.dt);
-              add_force(ax, ay, i, force, b.mass[i]);
-            }
+            if (f.enabled) accumulate_friction(f, c, first, last, ax, ay);
           },
           [&](const Liquid& f) {
-            if (!f.enabled) return;
-            for (std::size_t i = first; i < last; ++i) {
-              if (!f.contains(b.position(i))) continue;
-              Vec2 force = drag(b.velocity(i), f.c, b.drag_area[i]);
-              if (f.never_reverse) force = limit_drag(force, b.velocity(i), b.mass[i], c.dt);
-              add_force(ax, ay, i, force, b.mass[i]);
-            }
+            if (f.enabled) accumulate_liquid(f, c, first, last, ax, ay);
           },
           [&](const Drag& f) {
             if (!f.enabled) return;

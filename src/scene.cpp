@@ -8,6 +8,7 @@
 #include <type_traits>
 #include <utility>
 #include <variant>
+#include <vector>
 
 #include "calder/error.hpp"
 
@@ -39,6 +40,33 @@ void require_draw(const Draw& d, const std::string& where, const char* what, boo
       detail::require_finite(d.value, w.c_str(), "start");
       detail::require_finite(d.step, w.c_str(), "step");
       return;
+  }
+}
+
+// The groups of bodies of a scene, named in messages by `where`.
+void validate_bodies(const std::vector<BodyGroup>& bodies, const std::string& where) {
+  std::size_t total = 0;
+  for (std::size_t g = 0; g < bodies.size(); ++g) {
+    const BodyGroup& group = bodies[g];
+    const std::string w = where + ": bodies[" + std::to_string(g) + "]";
+    if (group.count > max_bodies || total + group.count > max_bodies) {
+      throw Error(w + ": more than " + std::to_string(max_bodies) + " bodies");
+    }
+    total += group.count;
+    require_draw(group.x, w, "x", false);
+    require_draw(group.y, w, "y", false);
+    require_draw(group.mass, w, "mass", true);
+    require_draw(group.vx, w, "vx", false);
+    require_draw(group.vy, w, "vy", false);
+    if (group.layout == BodyGroup::Layout::orbit) {
+      detail::require_finite(group.center.x, w.c_str(), "center.x");
+      detail::require_finite(group.center.y, w.c_str(), "center.y");
+      require_draw(group.distance, w, "distance", false);
+      require_draw(group.speed, w, "speed", false);
+    }
+    detail::require_non_negative(group.radius.k, w.c_str(), "radius");
+    if (group.friction) detail::require_non_negative(*group.friction, w.c_str(), "friction");
+    detail::require_non_negative(group.drag_area, w.c_str(), "drag_area");
   }
 }
 
@@ -128,29 +156,7 @@ void Scene::validate() const {
   if (world.threads < 0) {
     throw Error(where + ": threads must be >= 0 (got " + std::to_string(world.threads) + ")");
   }
-  std::size_t total = 0;
-  for (std::size_t g = 0; g < bodies.size(); ++g) {
-    const BodyGroup& group = bodies[g];
-    const std::string w = where + ": bodies[" + std::to_string(g) + "]";
-    if (group.count > max_bodies || total + group.count > max_bodies) {
-      throw Error(w + ": more than " + std::to_string(max_bodies) + " bodies");
-    }
-    total += group.count;
-    require_draw(group.x, w, "x", false);
-    require_draw(group.y, w, "y", false);
-    require_draw(group.mass, w, "mass", true);
-    require_draw(group.vx, w, "vx", false);
-    require_draw(group.vy, w, "vy", false);
-    if (group.layout == BodyGroup::Layout::orbit) {
-      detail::require_finite(group.center.x, w.c_str(), "center.x");
-      detail::require_finite(group.center.y, w.c_str(), "center.y");
-      require_draw(group.distance, w, "distance", false);
-      require_draw(group.speed, w, "speed", false);
-    }
-    detail::require_non_negative(group.radius.k, w.c_str(), "radius");
-    if (group.friction) detail::require_non_negative(*group.friction, w.c_str(), "friction");
-    detail::require_non_negative(group.drag_area, w.c_str(), "drag_area");
-  }
+  validate_bodies(bodies, where);
   for (std::size_t k = 0; k < fields.size(); ++k) {
     const SceneField& f = fields[k];
     const std::string w =

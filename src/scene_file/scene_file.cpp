@@ -119,6 +119,9 @@ class Reader : public TomlReader {
   void world(const Tbl& top, Scene& s) const;
   void boundary(const Tbl& top, const char* table, Boundary& boundary) const;
   BodyGroup body_group(const toml::table& t, std::size_t total_before) const;
+  void coordinates(const Tbl& b, std::string_view both, std::string_view first,
+                   std::string_view second, Draw& a, Draw& c, bool required) const;
+  RadiusRule radius(const toml::node& n) const;
   SceneField field(const toml::table& t) const;
   std::string field_type(const toml::table& t) const;
   template <class F>
@@ -336,55 +339,59 @@ BodyGroup Reader::body_group(const toml::table& t, std::size_t total_before) con
     g.speed = draw(b.require("speed"), "speed", Check::any);
   } else {
     // position = [x, y] or x and y; velocity = [vx, vy] or vx and vy.
-    const auto pair = [&](std::string_view both, std::string_view first, std::string_view second,
-                          Draw& a, Draw& c, bool required) {
-      const toml::node* n = b.find(both);
-      const toml::node* na = b.find(first);
-      const toml::node* nc = b.find(second);
-      if (n != nullptr) {
-        if (na != nullptr || nc != nullptr) {
-          fail(*n, cat("give either ", quote(both), " or ", quote(first), " and ", quote(second),
-                       ", not both"));
-        }
-        const Vec2 v = vec2(*n, std::string(both));
-        a = Draw::fixed(v.x);
-        c = Draw::fixed(v.y);
-        return;
-      }
-      if (required && na == nullptr && nc == nullptr) {
-        fail(t, cat("missing required key ", quote(both), " (or ", quote(first), " and ",
-                    quote(second), ") in [[bodies]]"));
-      }
-      if (na != nullptr || required) a = draw(b.require(first), std::string(first), Check::any);
-      if (nc != nullptr || required) c = draw(b.require(second), std::string(second), Check::any);
-    };
-    pair("position", "x", "y", g.x, g.y, true);
-    pair("velocity", "vx", "vy", g.vx, g.vy, false);
+    coordinates(b, "position", "x", "y", g.x, g.y, true);
+    coordinates(b, "velocity", "vx", "vy", g.vx, g.vy, false);
   }
-
-  if (const toml::node* n = b.find("radius")) {
-    if (const auto* rt = n->as_table()) {
-      const Tbl radius(*this, *rt, "'radius'", "radius.");
-      radius.allow({"per_mass", "per_sqrt_mass"});
-      if (rt->size() != 1) {
-        fail(*n, "'radius' must be a number, { per_mass = k } or { per_sqrt_mass = k }");
-      }
-      const bool per_mass = rt->contains("per_mass");
-      const char* key = per_mass ? "per_mass" : "per_sqrt_mass";
-      g.radius.kind = per_mass ? RadiusRule::Kind::per_mass : RadiusRule::Kind::per_sqrt_mass;
-      g.radius.k = number(radius.require(key), radius.label(key), Check::non_negative);
-    } else if (n->is_integer() || n->is_floating_point()) {
-      g.radius = {RadiusRule::Kind::fixed, number(*n, "radius", Check::non_negative)};
-    } else {
-      fail(*n, "'radius' must be a number, { per_mass = k } or { per_sqrt_mass = k }, got " +
-                   std::string(type_name(*n)));
-    }
-  }
+  if (const toml::node* n = b.find("radius")) g.radius = radius(*n);
   if (const toml::node* n = b.find("friction")) {
     g.friction = number(*n, "friction", Check::non_negative);
   }
   g.drag_area = b.number("drag_area", g.drag_area, Check::non_negative);
   return g;
+}
+
+// position = [x, y], or x and y each a number or a draw (the same for velocity).
+void Reader::coordinates(const Tbl& b, std::string_view both, std::string_view first,
+                         std::string_view second, Draw& a, Draw& c, bool required) const {
+  const toml::node* n = b.find(both);
+  const toml::node* na = b.find(first);
+  const toml::node* nc = b.find(second);
+  if (n != nullptr) {
+    if (na != nullptr || nc != nullptr) {
+      fail(*n, cat("give either ", quote(both), " or ", quote(first), " and ", quote(second),
+                   ", not both"));
+    }
+    const Vec2 v = vec2(*n, std::string(both));
+    a = Draw::fixed(v.x);
+    c = Draw::fixed(v.y);
+    return;
+  }
+  if (required && na == nullptr && nc == nullptr) {
+    fail(b.table(), cat("missing required key ", quote(both), " (or ", quote(first), " and ",
+                        quote(second), ") in [[bodies]]"));
+  }
+  if (na != nullptr || required) a = draw(b.require(first), std::string(first), Check::any);
+  if (nc != nullptr || required) c = draw(b.require(second), std::string(second), Check::any);
+}
+
+// A number, { per_mass = k } or { per_sqrt_mass = k }.
+RadiusRule Reader::radius(const toml::node& n) const {
+  if (const auto* rt = n.as_table()) {
+    const Tbl radius(*this, *rt, "'radius'", "radius.");
+    radius.allow({"per_mass", "per_sqrt_mass"});
+    if (rt->size() != 1) {
+      fail(n, "'radius' must be a number, { per_mass = k } or { per_sqrt_mass = k }");
+    }
+    const bool per_mass = rt->contains("per_mass");
+    const char* key = per_mass ? "per_mass" : "per_sqrt_mass";
+    return {per_mass ? RadiusRule::Kind::per_mass : RadiusRule::Kind::per_sqrt_mass,
+            number(radius.require(key), radius.label(key), Check::non_negative)};
+  }
+  if (n.is_integer() || n.is_floating_point()) {
+    return {RadiusRule::Kind::fixed, number(n, "radius", Check::non_negative)};
+  }
+  fail(n, "'radius' must be a number, { per_mass = k } or { per_sqrt_mass = k }, got " +
+              std::string(type_name(n)));
 }
 
 AttractionLaw Reader::law(const toml::node& n, const char* owner) const {

@@ -273,6 +273,48 @@ void require_writable(const Field& field, const std::string& where) {
       field);
 }
 
+// [input] and [look] list only what differs from the defaults.
+void write_input(Writer& w, const InputScript& in) {
+  const bool mouse_moved = !same(in.mouse.x, 0.0) || !same(in.mouse.y, 0.0);
+  if (!in.mouse_pressed.empty() || mouse_moved || !in.moves.empty()) {
+    w.header("[input]");
+    if (!in.mouse_pressed.empty()) {
+      std::string ranges;
+      for (const FrameRange& r : in.mouse_pressed) {
+        if (!ranges.empty()) ranges += ", ";
+        ranges += cat("[", std::to_string(r.first), ", ", std::to_string(r.last), "]");
+      }
+      w.line("mouse_pressed", "[" + ranges + "]");
+    }
+    if (mouse_moved) w.line("mouse", vec(in.mouse));
+    if (!in.moves.empty()) {
+      std::string moves;
+      for (const MouseMove& m : in.moves) {
+        if (!moves.empty()) moves += ", ";
+        moves += cat("{ frame = ", std::to_string(m.frame), ", position = ", vec(m.position), " }");
+      }
+      w.line("moves", "[" + moves + "]");
+    }
+  }
+}
+
+void write_look(Writer& w, const SceneLook& look) {
+  const SceneLook plain{};
+  const bool trails = look.trails != plain.trails;
+  const bool trail_alpha = !same(look.trail_alpha, plain.trail_alpha);
+  const bool body_gray = !same(look.body_gray, plain.body_gray);
+  const bool body_alpha = !same(look.body_alpha, plain.body_alpha);
+  const bool squares = look.squares != plain.squares;
+  if (trails || trail_alpha || body_gray || body_alpha || squares) {
+    w.header("[look]");
+    if (trails) w.line("trails", boolean(look.trails));
+    if (trail_alpha) w.line("trail_alpha", num(look.trail_alpha));
+    if (body_gray) w.line("body_gray", num(look.body_gray));
+    if (body_alpha) w.line("body_alpha", num(look.body_alpha));
+    if (squares) w.line("squares", boolean(look.squares));
+  }
+}
+
 }  // namespace
 
 std::string to_toml(const Scene& scene) {
@@ -314,45 +356,8 @@ std::string to_toml(const Scene& scene) {
   for (const BodyGroup& g : scene.bodies) write_body_group(w, g);
   for (const SceneField& f : scene.fields) write_field(w, f);
 
-  // [input] and [look] list only what differs from the defaults.
-  const InputScript& in = scene.input;
-  const bool mouse_moved = !same(in.mouse.x, 0.0) || !same(in.mouse.y, 0.0);
-  if (!in.mouse_pressed.empty() || mouse_moved || !in.moves.empty()) {
-    w.header("[input]");
-    if (!in.mouse_pressed.empty()) {
-      std::string ranges;
-      for (const FrameRange& r : in.mouse_pressed) {
-        if (!ranges.empty()) ranges += ", ";
-        ranges += cat("[", std::to_string(r.first), ", ", std::to_string(r.last), "]");
-      }
-      w.line("mouse_pressed", "[" + ranges + "]");
-    }
-    if (mouse_moved) w.line("mouse", vec(in.mouse));
-    if (!in.moves.empty()) {
-      std::string moves;
-      for (const MouseMove& m : in.moves) {
-        if (!moves.empty()) moves += ", ";
-        moves += cat("{ frame = ", std::to_string(m.frame), ", position = ", vec(m.position), " }");
-      }
-      w.line("moves", "[" + moves + "]");
-    }
-  }
-
-  const SceneLook& look = scene.look;
-  const SceneLook plain{};
-  const bool trails = look.trails != plain.trails;
-  const bool trail_alpha = !same(look.trail_alpha, plain.trail_alpha);
-  const bool body_gray = !same(look.body_gray, plain.body_gray);
-  const bool body_alpha = !same(look.body_alpha, plain.body_alpha);
-  const bool squares = look.squares != plain.squares;
-  if (trails || trail_alpha || body_gray || body_alpha || squares) {
-    w.header("[look]");
-    if (trails) w.line("trails", boolean(look.trails));
-    if (trail_alpha) w.line("trail_alpha", num(look.trail_alpha));
-    if (body_gray) w.line("body_gray", num(look.body_gray));
-    if (body_alpha) w.line("body_alpha", num(look.body_alpha));
-    if (squares) w.line("squares", boolean(look.squares));
-  }
+  write_input(w, scene.input);
+  write_look(w, scene.look);
   return w.take();
 }
 
