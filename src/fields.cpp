@@ -251,75 +251,57 @@ void accumulate(const Field& field, const FieldContext& c, std::size_t first, st
   std::visit(
       Overloaded{
           [&](const Gravity& f) {
-            if (!f.enabled) return;
-            if (!f.scale_by_mass) return accumulate_uniform(f.g, c, first, last, ax, ay);
-            accumulate_each(c, first, last, ax, ay,
-                            [&](std::size_t i) { return gravity(f.g, b.mass[i], true); });
+    if (!f.enabled) return;
+    if (!f.scale_by_mass) return accumulate_uniform(f.g, c, first, last, ax, ay);
+    accumulate_each(c, first, last, ax, ay,
+                    [&](std::size_t i) { return gravity(f.g, b.mass[i], true); });
           },
           [&](const Wind& f) {
-            if (f.enabled) accumulate_uniform(f.force, c, first, last, ax, ay);
+    if (f.enabled) accumulate_uniform(f.force, c, first, last, ax, ay);
           },
           [&](const NoiseWind& f) {
-            if (!f.enabled) return;
-            if (c.noise == nullptr) throw Error("field noise_wind: the world has no noise");
-            // Accumulating: the noise is read at offset itself (0 * rate adds nothing).
-            const double time = f.accumulate ? 0.0 : c.time;
-            accumulate_uniform(noise_wind(*c.noise, time, f.strength, f.rate, f.offset), c, first,
-                               last, ax, ay);
+    if (!f.enabled) return;
+    if (c.noise == nullptr) throw Error("field noise_wind: the world has no noise");
+    // Accumulating: the noise is read at offset itself (0 * rate adds nothing).
+    const double time = f.accumulate ? 0.0 : c.time;
+    accumulate_uniform(noise_wind(*c.noise, time, f.strength, f.rate, f.offset), c, first, last, ax,
+                       ay);
           },
           [&](const Helium& f) {
-            if (f.enabled) accumulate_uniform(helium(f.lift), c, first, last, ax, ay);
-          },
-          [&](const Fan& f) {
-            if (!f.enabled) return;
-            accumulate_each(c, first, last, ax, ay, [&](std::size_t i) {
-              return fan(f.position, b.position(i), f.strength, f.reach);
-            });
-          },
-          [&](const EdgeForce& f) {
-            if (!f.enabled) return;
-            accumulate_each(c, first, last, ax, ay, [&](std::size_t i) {
-              return edge_force(b.position(i), c.width, c.height, f.strength, f.margin);
-            });
+    if (f.enabled) accumulate_uniform(helium(f.lift), c, first, last, ax, ay);
           },
           [&](const Friction& f) {
-            if (f.enabled) accumulate_friction(f, c, first, last, ax, ay);
+    if (f.enabled) accumulate_friction(f, c, first, last, ax, ay);
           },
           [&](const Liquid& f) {
-            if (f.enabled) accumulate_liquid(f, c, first, last, ax, ay);
+    if (f.enabled) accumulate_liquid(f, c, first, last, ax, ay);
           },
-          [&](const Drag& f) {
-            if (!f.enabled) return;
-            accumulate_each(c, first, last, ax, ay, [&](std::size_t i) {
-              const Vec2 force = drag(b.velocity(i), f.c, b.drag_area[i]);
-              return f.never_reverse ? limit_drag(force, b.velocity(i), b.mass[i], c.dt) : force;
-            });
-          },
-          [&](const Lift& f) {
-            if (!f.enabled) return;
-            accumulate_each(c, first, last, ax, ay,
-                            [&](std::size_t i) { return lift(b.velocity(i), f.coefficient); });
-          },
-          [&](const Attractor& f) {
-            if (!f.enabled) return;
-            accumulate_each(c, first, last, ax, ay,
-                            [&](std::size_t i) { return f.attract(b.position(i), b.mass[i]); });
-          },
-          [&](const MutualAttraction& f) {
-            if (f.enabled) accumulate_mutual(f, c, first, last, ax, ay);
-          },
-          [&](const CustomForce& f) {
-            if (!f.enabled) return;
-            accumulate_each(c, first, last, ax, ay, [&](std::size_t i) {
-              const Vec2 force = f.force(c, i);
-              if (!force.is_finite()) {
-                throw Error("field custom_force: returned a non-finite force for body " +
-                            std::to_string(i));
-              }
-              return force;
-            });
-          },
-      },
+          // The kinds whose FieldKind gives the force on each body (fan, drag, ...).
+          [&]<class F>(const F& f)
+            requires requires { FieldKind<F>::force(f, c, first);
+}
+{
+  if (!f.enabled) return;
+  accumulate_each(c, first, last, ax, ay,
+                  [&](std::size_t i) { return FieldKind<F>::force(f, c, i); });
+}
+,
+    [&](const MutualAttraction& f) {
+      if (f.enabled) accumulate_mutual(f, c, first, last, ax, ay);
+    },
+    [&](const CustomForce& f) {
+      if (!f.enabled) return;
+      accumulate_each(c, first, last, ax, ay, [&](std::size_t i) {
+        const Vec2 force = f.force(c, i);
+        if (!force.is_finite()) {
+          throw Error("field custom_force: returned a non-finite force for body " +
+                      std::to_string(i));
+        }
+        return force;
+      });
+    },
+}  // namespace calder
+,
       field);
 }
 

@@ -249,9 +249,9 @@ const char* field_name(const Field& field);
 //
 // FieldKind<F> describes the field kind F: its name and its parameters, each
 // with its scene-file key, the values it accepts and when a file lists it.
-// field_name, validate, the scene reader and the TOML writer all work from
-// it (they std::visit Field, so a kind without a FieldKind doesn't compile);
-// what a kind does to the bodies is in accumulate (fields.cpp).
+// field_name, validate, accumulate, the scene reader and the TOML writer all
+// work from it (they std::visit Field, so a kind without a FieldKind doesn't
+// compile).
 
 // The values a parameter accepts (every number of a Vec2 or a Rect: finite).
 enum class Range {
@@ -276,6 +276,9 @@ struct Parameter {
 //   static constexpr bool in_scene_files = false;  // C++ code, no scene-file form
 //   static constexpr auto position = &F::position; // it can follow the mouse
 //   static void check(const F&, const std::string& where);  // rules across parameters
+//   // The force on body i, for a kind that acts on each body on its own
+//   // (the others have their own branch in accumulate).
+//   static Vec2 force(const F&, const FieldContext&, std::size_t i);
 template <class F>
 struct FieldKind;
 
@@ -326,6 +329,9 @@ struct FieldKind<Fan> {
       Parameter<Fan, double>{"reach", &Fan::reach, Range::positive},
   };
   static constexpr auto position = &Fan::position;
+  static Vec2 force(const Fan& f, const FieldContext& c, std::size_t i) {
+    return fan(f.position, c.bodies.position(i), f.strength, f.reach);
+  }
 };
 
 template <>
@@ -335,6 +341,9 @@ struct FieldKind<EdgeForce> {
       Parameter<EdgeForce, double>{"strength", &EdgeForce::strength},
       Parameter<EdgeForce, double>{"margin", &EdgeForce::margin, Range::positive},
   };
+  static Vec2 force(const EdgeForce& f, const FieldContext& c, std::size_t i) {
+    return edge_force(c.bodies.position(i), c.width, c.height, f.strength, f.margin);
+  }
 };
 
 template <>
@@ -366,6 +375,11 @@ struct FieldKind<Drag> {
       Parameter<Drag, double>{"c", &Drag::c, Range::non_negative},
       Parameter<Drag, bool>{"never_reverse", &Drag::never_reverse},
   };
+  static Vec2 force(const Drag& f, const FieldContext& c, std::size_t i) {
+    const BodyView& b = c.bodies;
+    const Vec2 force = drag(b.velocity(i), f.c, b.drag_area[i]);
+    return f.never_reverse ? limit_drag(force, b.velocity(i), b.mass[i], c.dt) : force;
+  }
 };
 
 template <>
@@ -373,6 +387,9 @@ struct FieldKind<Lift> {
   static constexpr const char* name = "lift";
   static constexpr auto parameters =
       std::tuple{Parameter<Lift, double>{"coefficient", &Lift::coefficient}};
+  static Vec2 force(const Lift& f, const FieldContext& c, std::size_t i) {
+    return lift(c.bodies.velocity(i), f.coefficient);
+  }
 };
 
 template <>
@@ -384,6 +401,9 @@ struct FieldKind<Attractor> {
       Parameter<Attractor, AttractionLaw>{"law", &Attractor::law},
   };
   static constexpr auto position = &Attractor::position;
+  static Vec2 force(const Attractor& f, const FieldContext& c, std::size_t i) {
+    return f.attract(c.bodies.position(i), c.bodies.mass[i]);
+  }
 };
 
 template <>
