@@ -35,8 +35,6 @@ Vec2 edge_force(Vec2 position, double width, double height, double strength, dou
           push(position.y) - push(height - position.y)};
 }
 
-Vec2 spring(Vec2 anchor, Vec2 position, double k) { return (anchor - position) * k; }
-
 Vec2 friction(Vec2 velocity, double mu, double normal) {
   // The book: friction = velocity.copy(); friction.mult(-1); friction.setMag(c * normal).
   Vec2 f = velocity;

@@ -116,13 +116,6 @@ struct EdgeForce {
   bool enabled = true;
 };
 
-// A spring pulling every body toward an anchor.
-struct Spring {
-  Vec2 anchor{320.0, 120.0};
-  double k = 0.01;
-  bool enabled = true;
-};
-
 // --- modeled forces ---
 
 // Kinetic friction on bodies touching a surface (the canvas edge `surface`,
@@ -243,7 +236,7 @@ struct CustomForce {
 };
 
 using Field = std::variant<Gravity, Wind, NoiseWind, Helium, Fan, EdgeForce, Friction, Liquid, Drag,
-                           Lift, Attractor, MutualAttraction, CustomForce, Spring>;
+                           Lift, Attractor, MutualAttraction, CustomForce>;
 
 // Throws calder::Error naming the field and parameter when a field's
 // parameters are out of range (negative drag, zero reach, NaN, ...).
@@ -441,18 +434,6 @@ struct FieldKind<CustomForce> {
   static constexpr bool in_scene_files = false;
   // The force function is not empty.
   static void check(const CustomForce& field, const std::string& where);
-};
-
-template <>
-struct FieldKind<Spring> {
-  static constexpr const char* name = "spring";
-  static constexpr auto parameters = std::tuple{
-      Parameter<Spring, Vec2>{"anchor", &Spring::anchor},
-      Parameter<Spring, double>{"k", &Spring::k, Range::non_negative},
-  };
-  static Vec2 force(const Spring& f, const FieldContext& c, std::size_t i) {
-    return spring(f.anchor, c.bodies.position(i), f.k);
-  }
 };
 
 // Whether a scene file can hold this kind of field.

@@ -46,9 +46,6 @@ Vec2 fan(Vec2 fan_position, Vec2 body_position, double strength, double reach);
 // margin, strength at the edge, stronger still past it. The four edges add up.
 Vec2 edge_force(Vec2 position, double width, double height, double strength, double margin);
 
-// A spring toward anchor: -k (position - anchor).
-Vec2 spring(Vec2 anchor, Vec2 position, double k);
-
 // --- modeled forces ---
 
 // Kinetic friction: -mu * N * v-hat. The book takes N = 1. A body at rest

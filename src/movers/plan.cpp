@@ -21,7 +21,6 @@ std::string why_not_field(const Field& field) {
     return "field mutual_attraction has no per-body kernel (calder::nbody sums it)";
   }
   if (std::holds_alternative<CustomForce>(field)) return "field custom_force has no kernel";
-  if (std::holds_alternative<Spring>(field)) return "field spring has no kernel";
   if (const auto* a = std::get_if<Attractor>(&field)) {
     const AttractionLaw& law = a->law;
     if (law.custom || law.exponent != 2.0 || law.repulsion != 0.0) {
@@ -145,8 +144,7 @@ bool compile(const StepBatch& batch, Plan& plan, std::string* why_not) {
             op.hi = f.law.max;
             op.softening = f.law.softening;
           } else {
-            static_assert(std::is_same_v<F, MutualAttraction> || std::is_same_v<F, CustomForce> ||
-                          std::is_same_v<F, Spring>);
+            static_assert(std::is_same_v<F, MutualAttraction> || std::is_same_v<F, CustomForce>);
             return;  // refused above
           }
           plan.ops.push_back(op);
