@@ -283,9 +283,17 @@ template <class F>
 struct FieldKind;
 
 namespace field_kind_detail {
-constexpr bool accumulating(const NoiseWind& f) { return f.accumulate; }
+template <class F, class T>
+F owner_of(T F::*);
 constexpr bool fast_method(const MutualAttraction& f) { return f.method != NBodyMethod::exact; }
 }  // namespace field_kind_detail
+
+// Parameter::written for a parameter written only when it is not the default.
+template <auto member>
+constexpr bool differs(const decltype(field_kind_detail::owner_of(member))& field) {
+  using F = decltype(field_kind_detail::owner_of(member));
+  return !(field.*member == F{}.*member);
+}
 
 template <>
 struct FieldKind<Gravity> {
@@ -310,7 +318,7 @@ struct FieldKind<NoiseWind> {
       Parameter<NoiseWind, double>{"rate", &NoiseWind::rate},
       Parameter<NoiseWind, double>{"offset", &NoiseWind::offset},
       Parameter<NoiseWind, bool>{"accumulate", &NoiseWind::accumulate, Range::finite,
-                                 field_kind_detail::accumulating},
+                                 differs<&NoiseWind::accumulate>},
   };
 };
 
