@@ -106,6 +106,7 @@ struct Fan {
   Vec2 position{};
   double strength = 1.0;
   double reach = 200.0;
+  bool pull = false;  // toward the fan instead of away
   bool enabled = true;
 };
 
@@ -335,10 +336,12 @@ struct FieldKind<Fan> {
       Parameter<Fan, Vec2>{"position", &Fan::position},
       Parameter<Fan, double>{"strength", &Fan::strength},
       Parameter<Fan, double>{"reach", &Fan::reach, Range::positive},
+      Parameter<Fan, bool>{"pull", &Fan::pull, Range::finite, differs<&Fan::pull>},
   };
   static constexpr auto position = &Fan::position;
   static Vec2 force(const Fan& f, const FieldContext& c, std::size_t i) {
-    return fan(f.position, c.bodies.position(i), f.strength, f.reach);
+    const Vec2 push = fan(f.position, c.bodies.position(i), f.strength, f.reach);
+    return f.pull ? -push : push;
   }
 };
 
