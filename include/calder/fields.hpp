@@ -106,7 +106,6 @@ struct Fan {
   Vec2 position{};
   double strength = 1.0;
   double reach = 200.0;
-  bool pull = false;  // toward the fan instead of away
   bool enabled = true;
 };
 
@@ -336,12 +335,10 @@ struct FieldKind<Fan> {
       Parameter<Fan, Vec2>{"position", &Fan::position},
       Parameter<Fan, double>{"strength", &Fan::strength},
       Parameter<Fan, double>{"reach", &Fan::reach, Range::positive},
-      Parameter<Fan, bool>{"pull", &Fan::pull, Range::finite, differs<&Fan::pull>},
   };
   static constexpr auto position = &Fan::position;
   static Vec2 force(const Fan& f, const FieldContext& c, std::size_t i) {
-    const Vec2 push = fan(f.position, c.bodies.position(i), f.strength, f.reach);
-    return f.pull ? -push : push;
+    return fan(f.position, c.bodies.position(i), f.strength, f.reach);
   }
 };
 

@@ -88,7 +88,7 @@ bool compile(const StepBatch& batch, Plan& plan, std::string* why_not) {
             op.kind = OpKind::fan;
             op.px = f.position.x;
             op.py = f.position.y;
-            op.c = f.pull ? -f.strength : f.strength;
+            op.c = f.strength;
             op.reach = f.reach;
           } else if constexpr (std::is_same_v<F, EdgeForce>) {
             op.kind = OpKind::edge_force;
