@@ -4,6 +4,8 @@
 #include <atomic>
 #include <cmath>
 #include <string>
+#include <tuple>
+#include <type_traits>
 
 #include "calder/error.hpp"
 #include "calder/random.hpp"
@@ -62,6 +64,32 @@ template <class ForceOf>
 void accumulate_each(const FieldContext& c, std::size_t first, std::size_t last,
                      std::span<double> ax, std::span<double> ay, ForceOf force_of) {
   for (std::size_t i = first; i < last; ++i) add_force(ax, ay, i, force_of(i), c.bodies.mass[i]);
+}
+
+// Friction on the bodies of the range that touch its surface.
+void accumulate_friction(const Friction& f, const FieldContext& c, std::size_t first,
+                         std::size_t last, std::span<double> ax, std::span<double> ay) {
+  const BodyView& b = c.bodies;
+  for (std::size_t i = first; i < last; ++i) {
+    if (!touches_edge(f.surface, b.position(i), b.radius[i], c.width, c.height, f.tolerance)) {
+      continue;
+    }
+    Vec2 force = friction(b.velocity(i), b.friction_or(i, f.mu), f.normal);
+    if (f.never_reverse) force = limit_drag(force, b.velocity(i), b.mass[i], c.dt);
+    add_force(ax, ay, i, force, b.mass[i]);
+  }
+}
+
+// Drag on the bodies of the range inside the liquid.
+void accumulate_liquid(const Liquid& f, const FieldContext& c, std::size_t first, std::size_t last,
+                       std::span<double> ax, std::span<double> ay) {
+  const BodyView& b = c.bodies;
+  for (std::size_t i = first; i < last; ++i) {
+    if (!f.contains(b.position(i))) continue;
+    Vec2 force = drag(b.velocity(i), f.c, b.drag_area[i]);
+    if (f.never_reverse) force = limit_drag(force, b.velocity(i), b.mass[i], c.dt);
+    add_force(ax, ay, i, force, b.mass[i]);
+  }
 }
 
 std::atomic<MutualAttractionBackend> mutual_backend{nullptr};
@@ -132,89 +160,87 @@ void accumulate_mutual(const MutualAttraction& f, const FieldContext& c, std::si
 void set_mutual_attraction_backend(MutualAttractionBackend backend) { mutual_backend = backend; }
 
 const char* field_name(const Field& field) {
-  return std::visit(Overloaded{
-                        [](const Gravity&) { return "gravity"; },
-                        [](const Wind&) { return "wind"; },
-                        [](const NoiseWind&) { return "noise_wind"; },
-                        [](const Helium&) { return "helium"; },
-                        [](const Fan&) { return "fan"; },
-                        [](const EdgeForce&) { return "edge_force"; },
-                        [](const Friction&) { return "friction"; },
-                        [](const Liquid&) { return "liquid"; },
-                        [](const Drag&) { return "drag"; },
-                        [](const Lift&) { return "lift"; },
-                        [](const Attractor&) { return "attractor"; },
-                        [](const MutualAttraction&) { return "mutual_attraction"; },
-                        [](const CustomForce&) { return "custom_force"; },
-                    },
+  return std::visit([](const auto& f) { return FieldKind<std::decay_t<decltype(f)>>::name; },
                     field);
 }
 
+namespace {
+
+// One parameter's value against its range; messages "field fan: reach must be > 0 (got 0)".
+void validate_value(double value, Range range, const std::string& where, const char* key) {
+  switch (range) {
+    case Range::finite:
+      return detail::require_finite(value, where.c_str(), key);
+    case Range::positive:
+      return detail::require_positive(value, where.c_str(), key);
+    case Range::non_negative:
+      return detail::require_non_negative(value, where.c_str(), key);
+    case Range::unit_interval:
+      if (!(value >= 0.0 && value <= 1.0)) {
+        throw Error(where + ": " + key + " must be in [0, 1] (got " + detail::format_number(value) +
+                    ")");
+      }
+      return;
+  }
+}
+
+void validate_value(int value, Range range, const std::string& where, const char* key) {
+  validate_value(static_cast<double>(value), range, where, key);
+}
+
+void validate_value(Vec2 value, Range, const std::string& where, const char* key) {
+  require_finite_vec(value, where.c_str(), key);
+}
+
+void validate_value(const Rect& region, Range, const std::string& where, const char* key) {
+  const std::string k(key);
+  detail::require_finite(region.x, where.c_str(), (k + ".x").c_str());
+  detail::require_finite(region.y, where.c_str(), (k + ".y").c_str());
+  detail::require_non_negative(region.w, where.c_str(), (k + ".w").c_str());
+  detail::require_non_negative(region.h, where.c_str(), (k + ".h").c_str());
+}
+
+void validate_value(const AttractionLaw& law, Range, const std::string& where, const char*) {
+  law.validate(where.c_str());
+}
+
+void validate_value(const std::optional<CentralBody>& central, Range, const std::string& where,
+                    const char* key) {
+  if (!central) return;
+  const std::string k(key);
+  require_finite_vec(central->position, where.c_str(), (k + ".position").c_str());
+  detail::require_positive(central->mass, where.c_str(), (k + ".mass").c_str());
+}
+
+// Booleans and enumerations: any value.
+template <class T>
+requires std::is_same_v<T, bool> || std::is_enum_v<T>
+void validate_value(T, Range, const std::string&, const char*) {}
+
+}  // namespace
+
+void FieldKind<MutualAttraction>::check(const MutualAttraction& f, const std::string& where) {
+  if (field_kind_detail::fast_method(f) &&
+      (f.law.custom || f.law.exponent != 2.0 || f.law.repulsion != 0.0)) {
+    throw Error(where +
+                ": the fast methods support the inverse-square law only (the book "
+                "clamp, the squared clamp or Plummer softening)");
+  }
+}
+
+void FieldKind<CustomForce>::check(const CustomForce& f, const std::string& where) {
+  if (!f.force) throw Error(where + ": force function is empty");
+}
+
 void validate(const Field& field) {
-  const std::string where_s = std::string("field ") + field_name(field);
-  const char* where = where_s.c_str();
   std::visit(
-      Overloaded{
-          [&](const Gravity& f) { require_finite_vec(f.g, where, "g"); },
-          [&](const Wind& f) { require_finite_vec(f.force, where, "force"); },
-          [&](const NoiseWind& f) {
-            detail::require_finite(f.strength, where, "strength");
-            detail::require_finite(f.rate, where, "rate");
-            detail::require_finite(f.offset, where, "offset");
-          },
-          [&](const Helium& f) { detail::require_finite(f.lift, where, "lift"); },
-          [&](const Fan& f) {
-            require_finite_vec(f.position, where, "position");
-            detail::require_finite(f.strength, where, "strength");
-            detail::require_positive(f.reach, where, "reach");
-          },
-          [&](const EdgeForce& f) {
-            detail::require_finite(f.strength, where, "strength");
-            detail::require_positive(f.margin, where, "margin");
-          },
-          [&](const Friction& f) {
-            detail::require_non_negative(f.mu, where, "mu");
-            detail::require_non_negative(f.normal, where, "normal");
-            detail::require_non_negative(f.tolerance, where, "tolerance");
-          },
-          [&](const Liquid& f) {
-            detail::require_finite(f.region.x, where, "region.x");
-            detail::require_finite(f.region.y, where, "region.y");
-            detail::require_non_negative(f.region.w, where, "region.w");
-            detail::require_non_negative(f.region.h, where, "region.h");
-            detail::require_non_negative(f.c, where, "c");
-          },
-          [&](const Drag& f) { detail::require_non_negative(f.c, where, "c"); },
-          [&](const Lift& f) { detail::require_finite(f.coefficient, where, "coefficient"); },
-          [&](const Attractor& f) {
-            require_finite_vec(f.position, where, "position");
-            detail::require_positive(f.mass, where, "mass");
-            f.law.validate(where);
-          },
-          [&](const MutualAttraction& f) {
-            f.law.validate(where);
-            if (!(f.theta >= 0.0 && f.theta <= 1.0)) {
-              throw Error(where_s + ": theta must be in [0, 1] (got " +
-                          detail::format_number(f.theta) + ")");
-            }
-            if (f.threads < 0) {
-              throw Error(where_s + ": threads must be >= 0 (got " + std::to_string(f.threads) +
-                          ")");
-            }
-            if (f.method != NBodyMethod::exact &&
-                (f.law.custom || f.law.exponent != 2.0 || f.law.repulsion != 0.0)) {
-              throw Error(where_s +
-                          ": the fast methods support the inverse-square law only (the book "
-                          "clamp, the squared clamp or Plummer softening)");
-            }
-            if (f.central) {
-              require_finite_vec(f.central->position, where, "central.position");
-              detail::require_positive(f.central->mass, where, "central.mass");
-            }
-          },
-          [&](const CustomForce& f) {
-            if (!f.force) throw Error(where_s + ": force function is empty");
-          },
+      [](const auto& f) {
+        using Kind = FieldKind<std::decay_t<decltype(f)>>;
+        const std::string where = std::string("field ") + Kind::name;
+        std::apply(
+            [&](const auto&... p) { (validate_value(f.*p.member, p.range, where, p.key), ...); },
+            Kind::parameters);
+        if constexpr (requires { Kind::check(f, where); }) Kind::check(f, where);
       },
       field);
 }
@@ -225,90 +251,57 @@ void accumulate(const Field& field, const FieldContext& c, std::size_t first, st
   std::visit(
       Overloaded{
           [&](const Gravity& f) {
-            if (!f.enabled) return;
-            if (!f.scale_by_mass) return accumulate_uniform(f.g, c, first, last, ax, ay);
-            accumulate_each(c, first, last, ax, ay,
-                            [&](std::size_t i) { return gravity(f.g, b.mass[i], true); });
+    if (!f.enabled) return;
+    if (!f.scale_by_mass) return accumulate_uniform(f.g, c, first, last, ax, ay);
+    accumulate_each(c, first, last, ax, ay,
+                    [&](std::size_t i) { return gravity(f.g, b.mass[i], true); });
           },
           [&](const Wind& f) {
-            if (f.enabled) accumulate_uniform(f.force, c, first, last, ax, ay);
+    if (f.enabled) accumulate_uniform(f.force, c, first, last, ax, ay);
           },
           [&](const NoiseWind& f) {
-            if (!f.enabled) return;
-            if (c.noise == nullptr) throw Error("field noise_wind: the world has no noise");
-            // Accumulating: the noise is read at offset itself (0 * rate adds nothing).
-            const double time = f.accumulate ? 0.0 : c.time;
-            accumulate_uniform(noise_wind(*c.noise, time, f.strength, f.rate, f.offset), c, first,
-                               last, ax, ay);
+    if (!f.enabled) return;
+    if (c.noise == nullptr) throw Error("field noise_wind: the world has no noise");
+    // Accumulating: the noise is read at offset itself (0 * rate adds nothing).
+    const double time = f.accumulate ? 0.0 : c.time;
+    accumulate_uniform(noise_wind(*c.noise, time, f.strength, f.rate, f.offset), c, first, last, ax,
+                       ay);
           },
           [&](const Helium& f) {
-            if (f.enabled) accumulate_uniform(helium(f.lift), c, first, last, ax, ay);
-          },
-          [&](const Fan& f) {
-            if (!f.enabled) return;
-            accumulate_each(c, first, last, ax, ay, [&](std::size_t i) {
-              return fan(f.position, b.position(i), f.strength, f.reach);
-            });
-          },
-          [&](const EdgeForce& f) {
-            if (!f.enabled) return;
-            accumulate_each(c, first, last, ax, ay, [&](std::size_t i) {
-              return edge_force(b.position(i), c.width, c.height, f.strength, f.margin);
-            });
+    if (f.enabled) accumulate_uniform(helium(f.lift), c, first, last, ax, ay);
           },
           [&](const Friction& f) {
-            if (!f.enabled) return;
-            for (std::size_t i = first; i < last; ++i) {
-              if (!touches_edge(f.surface, b.position(i), b.radius[i], c.width, c.height,
-                                f.tolerance)) {
-                continue;
-              }
-              Vec2 force = friction(b.velocity(i), b.friction_or(i, f.mu), f.normal);
-              if (f.never_reverse) force = limit_drag(force, b.velocity(i), b.mass[i], c.dt);
-              add_force(ax, ay, i, force, b.mass[i]);
-            }
+    if (f.enabled) accumulate_friction(f, c, first, last, ax, ay);
           },
           [&](const Liquid& f) {
-            if (!f.enabled) return;
-            for (std::size_t i = first; i < last; ++i) {
-              if (!f.contains(b.position(i))) continue;
-              Vec2 force = drag(b.velocity(i), f.c, b.drag_area[i]);
-              if (f.never_reverse) force = limit_drag(force, b.velocity(i), b.mass[i], c.dt);
-              add_force(ax, ay, i, force, b.mass[i]);
-            }
+    if (f.enabled) accumulate_liquid(f, c, first, last, ax, ay);
           },
-          [&](const Drag& f) {
-            if (!f.enabled) return;
-            accumulate_each(c, first, last, ax, ay, [&](std::size_t i) {
-              const Vec2 force = drag(b.velocity(i), f.c, b.drag_area[i]);
-              return f.never_reverse ? limit_drag(force, b.velocity(i), b.mass[i], c.dt) : force;
-            });
-          },
-          [&](const Lift& f) {
-            if (!f.enabled) return;
-            accumulate_each(c, first, last, ax, ay,
-                            [&](std::size_t i) { return lift(b.velocity(i), f.coefficient); });
-          },
-          [&](const Attractor& f) {
-            if (!f.enabled) return;
-            accumulate_each(c, first, last, ax, ay,
-                            [&](std::size_t i) { return f.attract(b.position(i), b.mass[i]); });
-          },
-          [&](const MutualAttraction& f) {
-            if (f.enabled) accumulate_mutual(f, c, first, last, ax, ay);
-          },
-          [&](const CustomForce& f) {
-            if (!f.enabled) return;
-            accumulate_each(c, first, last, ax, ay, [&](std::size_t i) {
-              const Vec2 force = f.force(c, i);
-              if (!force.is_finite()) {
-                throw Error("field custom_force: returned a non-finite force for body " +
-                            std::to_string(i));
-              }
-              return force;
-            });
-          },
-      },
+          // The kinds whose FieldKind gives the force on each body (fan, drag, ...).
+          [&]<class F>(const F& f)
+            requires requires { FieldKind<F>::force(f, c, first);
+}
+{
+  if (!f.enabled) return;
+  accumulate_each(c, first, last, ax, ay,
+                  [&](std::size_t i) { return FieldKind<F>::force(f, c, i); });
+}
+,
+    [&](const MutualAttraction& f) {
+      if (f.enabled) accumulate_mutual(f, c, first, last, ax, ay);
+    },
+    [&](const CustomForce& f) {
+      if (!f.enabled) return;
+      accumulate_each(c, first, last, ax, ay, [&](std::size_t i) {
+        const Vec2 force = f.force(c, i);
+        if (!force.is_finite()) {
+          throw Error("field custom_force: returned a non-finite force for body " +
+                      std::to_string(i));
+        }
+        return force;
+      });
+    },
+}  // namespace calder
+,
       field);
 }
 

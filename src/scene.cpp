@@ -4,8 +4,11 @@
 #include <algorithm>
 #include <cmath>
 #include <string>
+#include <string_view>
+#include <type_traits>
 #include <utility>
 #include <variant>
+#include <vector>
 
 #include "calder/error.hpp"
 
@@ -40,7 +43,56 @@ void require_draw(const Draw& d, const std::string& where, const char* what, boo
   }
 }
 
+// The groups of bodies of a scene, named in messages by `where`.
+void validate_bodies(const std::vector<BodyGroup>& bodies, const std::string& where) {
+  std::size_t total = 0;
+  for (std::size_t g = 0; g < bodies.size(); ++g) {
+    const BodyGroup& group = bodies[g];
+    const std::string w = where + ": bodies[" + std::to_string(g) + "]";
+    if (group.count > max_bodies || total + group.count > max_bodies) {
+      throw Error(w + ": more than " + std::to_string(max_bodies) + " bodies");
+    }
+    total += group.count;
+    require_draw(group.x, w, "x", false);
+    require_draw(group.y, w, "y", false);
+    require_draw(group.mass, w, "mass", true);
+    require_draw(group.vx, w, "vx", false);
+    require_draw(group.vy, w, "vy", false);
+    if (group.layout == BodyGroup::Layout::orbit) {
+      detail::require_finite(group.center.x, w.c_str(), "center.x");
+      detail::require_finite(group.center.y, w.c_str(), "center.y");
+      require_draw(group.distance, w, "distance", false);
+      require_draw(group.speed, w, "speed", false);
+    }
+    detail::require_non_negative(group.radius.k, w.c_str(), "radius");
+    if (group.friction) detail::require_non_negative(*group.friction, w.c_str(), "friction");
+    detail::require_non_negative(group.drag_area, w.c_str(), "drag_area");
+  }
+}
+
 }  // namespace
+
+bool can_follow_mouse(const Field& field) {
+  return std::visit([](const auto& f) { return has_position<std::decay_t<decltype(f)>>(); }, field);
+}
+
+std::string kinds_following_mouse() {
+  std::string out;
+  const auto add = [&]<class F>() {
+    if (!has_position<F>()) return;
+    if (!out.empty()) out += " or ";
+    const std::string name = FieldKind<F>::name;
+    out +=
+        (std::string_view("aeiou").find(name[0]) != std::string_view::npos ? "an " : "a ") + name;
+  };
+  [&]<std::size_t... I>(std::index_sequence<I...>) {
+    (add.template operator()<std::variant_alternative_t<I, Field>>(), ...);
+  }
+  (std::make_index_sequence<std::variant_size_v<Field>>());
+  return out;
+}
+
+bool can_be_dragged(const Field& field) { return std::holds_alternative<Attractor>(field); }
 
 double Draw::sample(Random& rng, std::size_t index) const {
   switch (kind) {
@@ -127,29 +179,7 @@ void Scene::validate() const {
   if (world.threads < 0) {
     throw Error(where + ": threads must be >= 0 (got " + std::to_string(world.threads) + ")");
   }
-  std::size_t total = 0;
-  for (std::size_t g = 0; g < bodies.size(); ++g) {
-    const BodyGroup& group = bodies[g];
-    const std::string w = where + ": bodies[" + std::to_string(g) + "]";
-    if (group.count > max_bodies || total + group.count > max_bodies) {
-      throw Error(w + ": more than " + std::to_string(max_bodies) + " bodies");
-    }
-    total += group.count;
-    require_draw(group.x, w, "x", false);
-    require_draw(group.y, w, "y", false);
-    require_draw(group.mass, w, "mass", true);
-    require_draw(group.vx, w, "vx", false);
-    require_draw(group.vy, w, "vy", false);
-    if (group.layout == BodyGroup::Layout::orbit) {
-      detail::require_finite(group.center.x, w.c_str(), "center.x");
-      detail::require_finite(group.center.y, w.c_str(), "center.y");
-      require_draw(group.distance, w, "distance", false);
-      require_draw(group.speed, w, "speed", false);
-    }
-    detail::require_non_negative(group.radius.k, w.c_str(), "radius");
-    if (group.friction) detail::require_non_negative(*group.friction, w.c_str(), "friction");
-    detail::require_non_negative(group.drag_area, w.c_str(), "drag_area");
-  }
+  validate_bodies(bodies, where);
   for (std::size_t k = 0; k < fields.size(); ++k) {
     const SceneField& f = fields[k];
     const std::string w =
@@ -159,12 +189,10 @@ void Scene::validate() const {
     } catch (const Error& e) {
       rethrow_with_context(e, where + ": fields[" + std::to_string(k) + "]: ");
     }
-    const bool positioned =
-        std::holds_alternative<Fan>(f.field) || std::holds_alternative<Attractor>(f.field);
-    if (f.binding.follow_mouse && !positioned) {
-      throw Error(w + ": only a fan or an attractor can follow the mouse");
+    if (f.binding.follow_mouse && !can_follow_mouse(f.field)) {
+      throw Error(w + ": only " + kinds_following_mouse() + " can follow the mouse");
     }
-    if (f.binding.draggable && !std::holds_alternative<Attractor>(f.field)) {
+    if (f.binding.draggable && !can_be_dragged(f.field)) {
       throw Error(w + ": only an attractor can be dragged");
     }
   }
@@ -288,8 +316,14 @@ void Simulation::step(const InputState& input) {
       std::visit([&](auto& f) { f.enabled = input.mouse_pressed; }, field);
     }
     if (b.follow_mouse) {
-      if (auto* fan = std::get_if<Fan>(&field)) fan->position = input.mouse;
-      if (auto* attractor = std::get_if<Attractor>(&field)) attractor->position = input.mouse;
+      std::visit(
+          [&](auto& f) {
+            using Kind = FieldKind<std::decay_t<decltype(f)>>;
+            if constexpr (has_position<std::decay_t<decltype(f)>>()) {
+              f.*Kind::position = input.mouse;
+            }
+          },
+          field);
     }
   }
   was_pressed_ = input.mouse_pressed;

@@ -20,6 +20,8 @@
 #include <sstream>
 #include <string>
 #include <string_view>
+#include <tuple>
+#include <type_traits>
 #include <utility>
 #include <variant>
 #include <vector>
@@ -839,6 +841,158 @@ TEST(SceneFileProperty, RandomisedScenesRunOrFailWithOneLine) {
   EXPECT_GT(refused, 20u);
   std::cout << "randomised scenes: " << ran << " ran, " << refused << " refused, " << failed_in_run
             << " stopped with an error\n";
+}
+
+// --- every field kind, as its FieldKind describes it (calder/fields.hpp) ------------------
+//
+// The kinds are enumerated from the Field variant, so a kind added later is
+// checked here without a line of this test changing.
+
+template <class Check>
+void for_each_field_kind(Check check) {
+  [&]<std::size_t... I>(std::index_sequence<I...>) {
+    (check.template operator()<std::variant_alternative_t<I, calder::Field>>(), ...);
+  }
+  (std::make_index_sequence<std::variant_size_v<calder::Field>>());
+}
+
+// A valid value unlike the default, so that a round trip that drops it fails.
+double changed(double v, calder::Range range) {
+  return range == calder::Range::unit_interval ? v / 2.0 + 0.125 : v * 1.5 + 0.75;
+}
+int changed(int v, calder::Range) { return v + 3; }
+bool changed(bool v, calder::Range) { return !v; }
+calder::Vec2 changed(calder::Vec2 v, calder::Range) { return v + calder::Vec2{1.25, -2.5}; }
+calder::Rect changed(calder::Rect r, calder::Range) {
+  return {r.x + 1.0, r.y - 2.0, r.w + 3.0, r.h + 4.0};
+}
+calder::AttractionLaw changed(const calder::AttractionLaw&, calder::Range) {
+  return calder::AttractionLaw::newtonian(2.5, 0.25);
+}
+std::optional<calder::CentralBody> changed(const std::optional<calder::CentralBody>&,
+                                           calder::Range) {
+  return calder::CentralBody{{3.0, 4.0}, 50.0};
+}
+template <class E>
+requires std::is_enum_v<E> E
+changed(E v, calder::Range) {  // every enumeration has a value 0 and a value 1
+  return static_cast<E>(static_cast<int>(v) == 0 ? 1 : 0);
+}
+
+bool same(double a, double b) { return bits(a) == bits(b); }
+bool same(calder::Vec2 a, calder::Vec2 b) { return same(a.x, b.x) && same(a.y, b.y); }
+bool same(const calder::Rect& a, const calder::Rect& b) {
+  return same(a.x, b.x) && same(a.y, b.y) && same(a.w, b.w) && same(a.h, b.h);
+}
+bool same(const calder::AttractionLaw& a, const calder::AttractionLaw& b) {
+  return same(a.G, b.G) && a.clamp == b.clamp && same(a.min, b.min) && same(a.max, b.max) &&
+         same(a.softening, b.softening) && a.product == b.product && same(a.exponent, b.exponent) &&
+         same(a.repulsion, b.repulsion) && same(a.repulsion_exponent, b.repulsion_exponent);
+}
+bool same(const std::optional<calder::CentralBody>& a,
+          const std::optional<calder::CentralBody>& b) {
+  return a.has_value() == b.has_value() &&
+         (!a || (same(a->position, b->position) && same(a->mass, b->mass)));
+}
+template <class T>
+requires std::is_integral_v<T> || std::is_enum_v<T>
+bool same(T a, T b) { return a == b; }
+
+// A value validate must refuse (none for a boolean or an enumeration).
+std::optional<double> refused(double, calder::Range range) {
+  return range == calder::Range::finite ? std::numeric_limits<double>::quiet_NaN() : -1.0;
+}
+std::optional<int> refused(int, calder::Range) { return -1; }
+std::optional<calder::Vec2> refused(calder::Vec2, calder::Range) {
+  return calder::Vec2{std::numeric_limits<double>::infinity(), 0.0};
+}
+std::optional<calder::Rect> refused(calder::Rect, calder::Range) {
+  return calder::Rect{0.0, 0.0, -1.0, 1.0};
+}
+std::optional<calder::AttractionLaw> refused(const calder::AttractionLaw&, calder::Range) {
+  return calder::AttractionLaw::book(std::numeric_limits<double>::quiet_NaN(), 5.0, 25.0);
+}
+std::optional<std::optional<calder::CentralBody>> refused(const std::optional<calder::CentralBody>&,
+                                                          calder::Range) {
+  return std::optional<calder::CentralBody>{calder::CentralBody{{0.0, 0.0}, 0.0}};
+}
+template <class T>
+requires std::is_same_v<T, bool> || std::is_enum_v<T> std::optional<T> refused(T, calder::Range) {
+  return std::nullopt;
+}
+
+TEST(FieldKinds, EachHasItsOwnName) {
+  std::vector<std::string> names;
+  for_each_field_kind([&]<class F>() {
+    const std::string name = calder::FieldKind<F>::name;
+    EXPECT_FALSE(name.empty());
+    EXPECT_EQ(calder::field_name(F{}), name);
+    names.push_back(name);
+  });
+  std::sort(names.begin(), names.end());
+  EXPECT_EQ(std::adjacent_find(names.begin(), names.end()), names.end());
+  EXPECT_EQ(names.size(), std::variant_size_v<calder::Field>);
+}
+
+TEST(FieldKinds, EveryParameterRoundTripsThroughAFile) {
+  int kinds = 0;
+  for_each_field_kind([&]<class F>() {
+    using Kind = calder::FieldKind<F>;
+    if (!calder::in_scene_files<F>()) return;
+    SCOPED_TRACE(Kind::name);
+    ++kinds;
+    F field;
+    std::vector<std::string> keys;
+    std::apply(
+        [&](const auto&... p) {
+          ((field.*p.member = changed(field.*p.member, p.range), keys.emplace_back(p.key)), ...);
+        },
+        Kind::parameters);
+    EXPECT_FALSE(keys.empty());
+    std::sort(keys.begin(), keys.end());
+    EXPECT_EQ(std::adjacent_find(keys.begin(), keys.end()), keys.end()) << "a key twice";
+    ASSERT_NO_THROW(calder::validate(field));
+    Scene s;
+    s.fields.push_back({field, {}});
+    const std::string text = calder::to_toml(s);
+    const Scene back = calder::parse_scene(text, "t.toml");
+    ASSERT_EQ(back.fields.size(), 1u);
+    const F* read = std::get_if<F>(&back.fields[0].field);
+    ASSERT_NE(read, nullptr) << text;
+    const F plain{};
+    const auto check = [&](const auto& p) {
+      EXPECT_FALSE(same(plain.*p.member, field.*p.member)) << p.key << ": not changed";
+      EXPECT_TRUE(same(read->*p.member, field.*p.member)) << p.key << " in\n" << text;
+    };
+    std::apply([&](const auto&... p) { (check(p), ...); }, Kind::parameters);
+    EXPECT_EQ(calder::to_toml(back), text);
+  });
+  EXPECT_EQ(kinds, static_cast<int>(std::variant_size_v<calder::Field>) - 1);  // custom_force
+}
+
+TEST(FieldKinds, EveryNumberIsValidated) {
+  for_each_field_kind([&]<class F>() {
+    using Kind = calder::FieldKind<F>;
+    SCOPED_TRACE(Kind::name);
+    std::apply(
+        [&](const auto&... p) {
+          [[maybe_unused]] const auto check = [&](const auto& parameter) {
+            F field;
+            const auto bad = refused(field.*parameter.member, parameter.range);
+            if (!bad) return;
+            field.*parameter.member = *bad;
+            try {
+              calder::validate(field);
+              ADD_FAILURE() << parameter.key << ": no error";
+            } catch (const calder::Error& e) {
+              EXPECT_THAT(e.what(), StartsWith(std::string("field ") + Kind::name + ": "));
+              EXPECT_THAT(e.what(), HasSubstr(parameter.key));
+            }
+          };
+          (check(p), ...);
+        },
+        Kind::parameters);
+  });
 }
 
 }  // namespace

@@ -17,6 +17,8 @@
 #include <functional>
 #include <optional>
 #include <span>
+#include <string>
+#include <tuple>
 #include <variant>
 
 #include "calder/forces.hpp"
@@ -242,6 +244,221 @@ void validate(const Field& field);
 
 // A field's name as error messages and scene files spell it ("gravity", ...).
 const char* field_name(const Field& field);
+
+// --- every field kind described once ---
+//
+// FieldKind<F> describes the field kind F: its name and its parameters, each
+// with its scene-file key, the values it accepts and when a file lists it.
+// field_name, validate, accumulate, the scene reader and the TOML writer all
+// work from it (they std::visit Field, so a kind without a FieldKind doesn't
+// compile).
+
+// The values a parameter accepts (every number of a Vec2 or a Rect: finite).
+enum class Range {
+  finite,
+  positive,
+  non_negative,
+  // [0, 1]. A scene file's reader checks >= 0 at the value, validate the rest.
+  unit_interval,
+};
+
+template <class F, class T>
+struct Parameter {
+  const char* key;  // in scene files and messages
+  T F::*member;
+  Range range = Range::finite;
+  // When to_toml writes it (nullptr: always; false: left out, so the default applies).
+  bool (*written)(const F&) = nullptr;
+};
+
+// Specialised for every alternative of Field below. Besides name and
+// parameters a kind may have:
+//   static constexpr bool in_scene_files = false;  // C++ code, no scene-file form
+//   static constexpr auto position = &F::position; // it can follow the mouse
+//   static void check(const F&, const std::string& where);  // rules across parameters
+//   // The force on body i, for a kind that acts on each body on its own
+//   // (the others have their own branch in accumulate).
+//   static Vec2 force(const F&, const FieldContext&, std::size_t i);
+template <class F>
+struct FieldKind;
+
+namespace field_kind_detail {
+template <class F, class T>
+F owner_of(T F::*);
+constexpr bool fast_method(const MutualAttraction& f) { return f.method != NBodyMethod::exact; }
+}  // namespace field_kind_detail
+
+// Parameter::written for a parameter written only when it is not the default.
+template <auto member>
+constexpr bool differs(const decltype(field_kind_detail::owner_of(member))& field) {
+  using F = decltype(field_kind_detail::owner_of(member));
+  return !(field.*member == F{}.*member);
+}
+
+template <>
+struct FieldKind<Gravity> {
+  static constexpr const char* name = "gravity";
+  static constexpr auto parameters = std::tuple{
+      Parameter<Gravity, Vec2>{"g", &Gravity::g},
+      Parameter<Gravity, bool>{"scale_by_mass", &Gravity::scale_by_mass},
+  };
+};
+
+template <>
+struct FieldKind<Wind> {
+  static constexpr const char* name = "wind";
+  static constexpr auto parameters = std::tuple{Parameter<Wind, Vec2>{"force", &Wind::force}};
+};
+
+template <>
+struct FieldKind<NoiseWind> {
+  static constexpr const char* name = "noise_wind";
+  static constexpr auto parameters = std::tuple{
+      Parameter<NoiseWind, double>{"strength", &NoiseWind::strength},
+      Parameter<NoiseWind, double>{"rate", &NoiseWind::rate},
+      Parameter<NoiseWind, double>{"offset", &NoiseWind::offset},
+      Parameter<NoiseWind, bool>{"accumulate", &NoiseWind::accumulate, Range::finite,
+                                 differs<&NoiseWind::accumulate>},
+  };
+};
+
+template <>
+struct FieldKind<Helium> {
+  static constexpr const char* name = "helium";
+  static constexpr auto parameters = std::tuple{Parameter<Helium, double>{"lift", &Helium::lift}};
+};
+
+template <>
+struct FieldKind<Fan> {
+  static constexpr const char* name = "fan";
+  static constexpr auto parameters = std::tuple{
+      Parameter<Fan, Vec2>{"position", &Fan::position},
+      Parameter<Fan, double>{"strength", &Fan::strength},
+      Parameter<Fan, double>{"reach", &Fan::reach, Range::positive},
+  };
+  static constexpr auto position = &Fan::position;
+  static Vec2 force(const Fan& f, const FieldContext& c, std::size_t i) {
+    return fan(f.position, c.bodies.position(i), f.strength, f.reach);
+  }
+};
+
+template <>
+struct FieldKind<EdgeForce> {
+  static constexpr const char* name = "edge_force";
+  static constexpr auto parameters = std::tuple{
+      Parameter<EdgeForce, double>{"strength", &EdgeForce::strength},
+      Parameter<EdgeForce, double>{"margin", &EdgeForce::margin, Range::positive},
+  };
+  static Vec2 force(const EdgeForce& f, const FieldContext& c, std::size_t i) {
+    return edge_force(c.bodies.position(i), c.width, c.height, f.strength, f.margin);
+  }
+};
+
+template <>
+struct FieldKind<Friction> {
+  static constexpr const char* name = "friction";
+  static constexpr auto parameters = std::tuple{
+      Parameter<Friction, double>{"mu", &Friction::mu, Range::non_negative},
+      Parameter<Friction, double>{"normal", &Friction::normal, Range::non_negative},
+      Parameter<Friction, Edge>{"surface", &Friction::surface},
+      Parameter<Friction, double>{"tolerance", &Friction::tolerance, Range::non_negative},
+      Parameter<Friction, bool>{"never_reverse", &Friction::never_reverse},
+  };
+};
+
+template <>
+struct FieldKind<Liquid> {
+  static constexpr const char* name = "liquid";
+  static constexpr auto parameters = std::tuple{
+      Parameter<Liquid, Rect>{"region", &Liquid::region},  // w and h >= 0
+      Parameter<Liquid, double>{"c", &Liquid::c, Range::non_negative},
+      Parameter<Liquid, bool>{"never_reverse", &Liquid::never_reverse},
+  };
+};
+
+template <>
+struct FieldKind<Drag> {
+  static constexpr const char* name = "drag";
+  static constexpr auto parameters = std::tuple{
+      Parameter<Drag, double>{"c", &Drag::c, Range::non_negative},
+      Parameter<Drag, bool>{"never_reverse", &Drag::never_reverse},
+  };
+  static Vec2 force(const Drag& f, const FieldContext& c, std::size_t i) {
+    const BodyView& b = c.bodies;
+    const Vec2 force = drag(b.velocity(i), f.c, b.drag_area[i]);
+    return f.never_reverse ? limit_drag(force, b.velocity(i), b.mass[i], c.dt) : force;
+  }
+};
+
+template <>
+struct FieldKind<Lift> {
+  static constexpr const char* name = "lift";
+  static constexpr auto parameters =
+      std::tuple{Parameter<Lift, double>{"coefficient", &Lift::coefficient}};
+  static Vec2 force(const Lift& f, const FieldContext& c, std::size_t i) {
+    return lift(c.bodies.velocity(i), f.coefficient);
+  }
+};
+
+template <>
+struct FieldKind<Attractor> {
+  static constexpr const char* name = "attractor";
+  static constexpr auto parameters = std::tuple{
+      Parameter<Attractor, Vec2>{"position", &Attractor::position},
+      Parameter<Attractor, double>{"mass", &Attractor::mass, Range::positive},
+      Parameter<Attractor, AttractionLaw>{"law", &Attractor::law},
+  };
+  static constexpr auto position = &Attractor::position;
+  static Vec2 force(const Attractor& f, const FieldContext& c, std::size_t i) {
+    return f.attract(c.bodies.position(i), c.bodies.mass[i]);
+  }
+};
+
+template <>
+struct FieldKind<MutualAttraction> {
+  static constexpr const char* name = "mutual_attraction";
+  using M = MutualAttraction;
+  static constexpr auto parameters = std::tuple{
+      Parameter<M, AttractionLaw>{"law", &M::law},
+      Parameter<M, PairOrder>{"order", &M::order},
+      Parameter<M, NBodyMethod>{"method", &M::method, Range::finite,
+                                field_kind_detail::fast_method},
+      Parameter<M, double>{"theta", &M::theta, Range::unit_interval,
+                           field_kind_detail::fast_method},
+      Parameter<M, bool>{"single_precision", &M::single_precision, Range::finite,
+                         field_kind_detail::fast_method},
+      Parameter<M, int>{"threads", &M::threads, Range::non_negative,
+                        field_kind_detail::fast_method},
+      Parameter<M, std::optional<CentralBody>>{"central", &M::central},  // position, mass > 0
+  };
+  // The fast methods support the inverse-square law only.
+  static void check(const MutualAttraction& field, const std::string& where);
+};
+
+template <>
+struct FieldKind<CustomForce> {
+  static constexpr const char* name = "custom_force";
+  static constexpr auto parameters = std::tuple{};
+  static constexpr bool in_scene_files = false;
+  // The force function is not empty.
+  static void check(const CustomForce& field, const std::string& where);
+};
+
+// Whether a scene file can hold this kind of field.
+template <class F>
+constexpr bool in_scene_files() {
+  if constexpr (requires { FieldKind<F>::in_scene_files; }) {
+    return FieldKind<F>::in_scene_files;
+  } else {
+    return true;
+  }
+}
+
+// Whether this kind has a position that can follow the mouse (FieldKind::position).
+template <class F>
+constexpr bool has_position() {
+  return requires { FieldKind<F>::position; };
+}
 
 // Adds the field's acceleration (force / mass, one body at a time) to
 // (ax, ay) for bodies [first, last). Does nothing when the field is disabled.

@@ -84,6 +84,13 @@ struct FieldBinding {
   bool draggable = false;      // an Attractor grabbed within `mass` pixels and dragged (2.6)
 };
 
+// Whether a field can follow the mouse: a kind with a position (FieldKind::position).
+bool can_follow_mouse(const Field& field);
+// The kinds that can, as messages list them ("a fan or an attractor").
+std::string kinds_following_mouse();
+// Whether a field can be dragged: an Attractor, grabbed within `mass` pixels.
+bool can_be_dragged(const Field& field);
+
 struct SceneField {
   Field field;
   FieldBinding binding{};

@@ -90,6 +90,11 @@ inline constexpr std::array<Choice<NBodyMethod>, 3> kNBodyMethods{{
     {"barnes_hut", NBodyMethod::barnes_hut},
 }};
 
+// The table of an enumeration a field parameter may have (see FieldKind).
+constexpr const auto& choices(Edge) { return kEdges; }
+constexpr const auto& choices(PairOrder) { return kPairOrders; }
+constexpr const auto& choices(NBodyMethod) { return kNBodyMethods; }
+
 // The name of an enumerator (empty if the table lacks it, which a complete
 // table never does).
 template <class E, std::size_t N>

@@ -37,6 +37,7 @@
 #include "calder/trajectory.hpp"
 #include "names.hpp"
 #include "text_check.hpp"
+#include "toml_reading.hpp"
 
 namespace calder {
 
@@ -44,6 +45,7 @@ namespace {
 
 using scene_file_detail::cat;
 using scene_file_detail::Choice;
+using scene_file_detail::choices;
 using scene_file_detail::kArithmetics;
 using scene_file_detail::kBoundaryKinds;
 using scene_file_detail::kBoundaryTimings;
@@ -57,80 +59,17 @@ using scene_file_detail::kPressActions;
 using scene_file_detail::kProducts;
 using scene_file_detail::kUpdateOrders;
 
-using Keys = std::vector<std::string_view>;
+using scene_file_detail::Check;
+using scene_file_detail::Keys;
+using scene_file_detail::one_line;
+using scene_file_detail::quote;
+using scene_file_detail::shown;
+using scene_file_detail::Tbl;
+using scene_file_detail::TomlReader;
+using scene_file_detail::type_name;
 
-// --- words for messages ---------------------------------------------------------
-
-// The candidate closest to word when it is close enough to be a likely typo
-// (see calder::detail::closest).
-std::optional<std::string_view> nearest(std::string_view word, const Keys& candidates) {
-  return detail::closest(word, candidates);
-}
-
-std::string join(const Keys& words) {
-  std::string out;
-  for (const std::string_view w : words) {
-    if (!out.empty()) out += ", ";
-    out += w;
-  }
-  return out;
-}
-
-template <class E, std::size_t N>
-Keys names(const std::array<Choice<E>, N>& choices) {
-  Keys out;
-  for (const Choice<E>& c : choices) out.push_back(c.name);
-  return out;
-}
-
-// Input shown in a message: control characters escaped, cut to a readable length.
-std::string quote(std::string_view s) { return cat("'", detail::printable(s), "'"); }
-std::string shown(std::string_view path) { return detail::printable(path, 240); }
-
-const char* type_name(const toml::node& n) {
-  switch (n.type()) {
-    case toml::node_type::string:
-      return "a string";
-    case toml::node_type::integer:
-      return "an integer";
-    case toml::node_type::floating_point:
-      return "a float";
-    case toml::node_type::boolean:
-      return "a boolean";
-    case toml::node_type::array:
-      return "an array";
-    case toml::node_type::table:
-      return "a table";
-    case toml::node_type::date:
-      return "a date";
-    case toml::node_type::time:
-      return "a time";
-    case toml::node_type::date_time:
-      return "a date-time";
-    case toml::node_type::none:
-      break;
-  }
-  return "nothing";
-}
-
-// Messages are one line, whatever a key or a file name holds.
-std::string one_line(std::string s) {
-  for (char& c : s) {
-    if (c == '\n' || c == '\r') c = ' ';
-  }
-  return s;
-}
-
-bool before(const toml::source_position& a, const toml::source_position& b) {
-  return a.line < b.line || (a.line == b.line && a.column < b.column);
-}
-
-enum class Check { any, positive, non_negative };
-
-// The field types a file may name, in the order docs/SCENES.md lists them.
-const Keys kFieldTypes = {"gravity", "wind",       "noise_wind", "helium",
-                          "fan",     "edge_force", "friction",   "liquid",
-                          "drag",    "lift",       "attractor",  "mutual_attraction"};
+// The most threads a file may ask for.
+constexpr std::int64_t kMaxThreads = 1024;
 
 // The keys of the top level, in the order docs/SCENES.md lists them.
 const Keys kTopLevelKeys = {"name",     "description", "frames", "seed",     "origin",
@@ -139,159 +78,9 @@ const Keys kTopLevelKeys = {"name",     "description", "frames", "seed",     "or
 
 // --- the reader -------------------------------------------------------------------
 
-class Reader;
-
-// A table of the document, with what messages call it ("[[bodies]]") and the
-// prefix of its keys' labels ("law." for the keys of an inline `law` table).
-class Tbl {
+class Reader : public TomlReader {
  public:
-  Tbl(const Reader& reader, const toml::table& table, std::string context, std::string prefix = "")
-      : r_(&reader), t_(&table), context_(std::move(context)), prefix_(std::move(prefix)) {}
-
-  [[nodiscard]] const toml::table& table() const { return *t_; }
-  [[nodiscard]] const std::string& context() const { return context_; }
-  [[nodiscard]] std::string label(std::string_view key) const { return prefix_ + std::string(key); }
-  [[nodiscard]] const toml::node* find(std::string_view key) const { return t_->get(key); }
-  // Where a key that is there is written (the key itself, not its value).
-  [[nodiscard]] toml::source_position key_at(std::string_view key) const {
-    const auto it = t_->find(key);
-    return it != t_->end() ? it->first.source().begin : t_->source().begin;
-  }
-
-  // Fails at the first key (in the file's order) that is not one of these.
-  void allow(const Keys& keys) const;
-  // The value of a key that must be there.
-  [[nodiscard]] const toml::node& require(std::string_view key) const;
-
-  [[nodiscard]] double number(std::string_view key, double fallback,
-                              Check check = Check::any) const;
-  [[nodiscard]] bool boolean(std::string_view key, bool fallback) const;
-  [[nodiscard]] std::string string(std::string_view key, std::string fallback) const;
-  [[nodiscard]] Vec2 vec2(std::string_view key, Vec2 fallback) const;
-  template <class E, std::size_t N>
-  [[nodiscard]] E choice(std::string_view key, const std::array<Choice<E>, N>& choices,
-                         E fallback) const;
-  // An optional sub-table (a [table] or an inline { ... }).
-  [[nodiscard]] const toml::table* table(std::string_view key) const;
-  // An optional array.
-  [[nodiscard]] const toml::array* array(std::string_view key) const;
-
- private:
-  const Reader* r_;
-  const toml::table* t_;
-  std::string context_;
-  std::string prefix_;
-};
-
-class Reader {
- public:
-  explicit Reader(std::string source) : source_(std::move(source)) {}
-
-  [[noreturn]] void fail(const toml::source_position& at, const std::string& problem) const {
-    const toml::source_position where = at ? at : toml::source_position{1, 1};
-    throw SceneFileError(one_line(cat(shown(source_), ":", std::to_string(where.line), ":",
-                                      std::to_string(where.column), ": ", problem)));
-  }
-  [[noreturn]] void fail(const toml::node& n, const std::string& problem) const {
-    fail(n.source().begin, problem);
-  }
-
-  // --- values ---
-  double number(const toml::node& n, const std::string& label, Check check = Check::any) const {
-    double v = 0.0;
-    if (const auto* i = n.as_integer()) {
-      v = static_cast<double>(i->get());
-    } else if (const auto* f = n.as_floating_point()) {
-      v = f->get();
-    } else {
-      fail(n, quote(label) + " must be a number, got " + type_name(n));
-    }
-    if (!std::isfinite(v)) {
-      fail(n, cat(quote(label), " must be a finite number, got ", format_number(v)));
-    }
-    if (check == Check::positive && !(v > 0.0)) {
-      fail(n, cat(quote(label), " must be > 0, got ", format_number(v)));
-    }
-    if (check == Check::non_negative && !(v >= 0.0)) {
-      fail(n, cat(quote(label), " must be >= 0, got ", format_number(v)));
-    }
-    return v;
-  }
-
-  std::int64_t integer(const toml::node& n, const std::string& label, std::int64_t min,
-                       std::int64_t max) const {
-    const auto* i = n.as_integer();
-    if (i == nullptr) fail(n, quote(label) + " must be an integer, got " + type_name(n));
-    const std::int64_t v = i->get();
-    if (v < min || v > max) {
-      fail(n, cat(quote(label), " must be between ", std::to_string(min), " and ",
-                  std::to_string(max), ", got ", std::to_string(v)));
-    }
-    return v;
-  }
-
-  bool boolean(const toml::node& n, const std::string& label) const {
-    const auto* b = n.as_boolean();
-    if (b == nullptr) fail(n, quote(label) + " must be true or false, got " + type_name(n));
-    return b->get();
-  }
-
-  std::string string(const toml::node& n, const std::string& label) const {
-    const auto* s = n.as_string();
-    if (s == nullptr) fail(n, quote(label) + " must be a string, got " + type_name(n));
-    return s->get();
-  }
-
-  const toml::array& array_of(const toml::node& n, const std::string& label,
-                              const char* shape) const {
-    const auto* a = n.as_array();
-    if (a == nullptr) fail(n, quote(label) + " must be " + shape + ", got " + type_name(n));
-    return *a;
-  }
-
-  const toml::table& table_of(const toml::node& n, const std::string& label,
-                              const char* shape = "a table") const {
-    const auto* t = n.as_table();
-    if (t == nullptr) fail(n, quote(label) + " must be " + shape + ", got " + type_name(n));
-    return *t;
-  }
-
-  // An array of exactly `size` numbers.
-  std::vector<double> numbers(const toml::node& n, const std::string& label, std::size_t size,
-                              const char* shape) const {
-    const toml::array& a = array_of(n, label, shape);
-    if (a.size() != size) {
-      fail(n,
-           cat(quote(label), " must be ", shape, ", got an array of ", std::to_string(a.size())));
-    }
-    std::vector<double> out;
-    for (std::size_t i = 0; i < size; ++i) {
-      out.push_back(number(a[i], cat(label, "[", std::to_string(i), "]")));
-    }
-    return out;
-  }
-
-  Vec2 vec2(const toml::node& n, const std::string& label) const {
-    const std::vector<double> v = numbers(n, label, 2, "an array of 2 numbers [x, y]");
-    return {v[0], v[1]};
-  }
-
-  template <class E, std::size_t N>
-  E choice(const toml::node& n, const std::string& label,
-           const std::array<Choice<E>, N>& choices) const {
-    const std::string s = string(n, label);
-    for (const Choice<E>& c : choices) {
-      if (c.name == s) return c.value;
-    }
-    fail(n, unknown_choice(label, s, names(choices)));
-  }
-
-  static std::string unknown_choice(const std::string& label, const std::string& got,
-                                    const Keys& valid) {
-    std::string m = cat(quote(label), " must be one of ", join(valid), " (got ", quote(got));
-    if (const auto near = nearest(got, valid)) m += cat("; did you mean ", quote(*near), "?");
-    return m + ")";
-  }
+  explicit Reader(std::string source) : TomlReader(std::move(source), kTopLevelKeys) {}
 
   // A number, { min = a, max = b } or { start = a, step = b }.
   Draw draw(const toml::node& n, const std::string& label, Check check) const {
@@ -330,89 +119,42 @@ class Reader {
   void world(const Tbl& top, Scene& s) const;
   void boundary(const Tbl& top, const char* table, Boundary& boundary) const;
   BodyGroup body_group(const toml::table& t, std::size_t total_before) const;
+  void coordinates(const Tbl& b, std::string_view both, std::string_view first,
+                   std::string_view second, Draw& a, Draw& c, bool required) const;
+  RadiusRule radius(const toml::node& n) const;
   SceneField field(const toml::table& t) const;
+  std::string field_type(const toml::table& t) const;
+  template <class F>
+  Field field_parameters(const Tbl& f) const;
+  void field_options(const Tbl& f, SceneField& out) const;
+  // One parameter of a field kind (FieldKind::parameters), by its type.
+  void parameter(const Tbl& f, const char* key, Range range, double& value, const char*) const;
+  void parameter(const Tbl& f, const char* key, Range range, int& value, const char*) const;
+  void parameter(const Tbl& f, const char* key, Range, bool& value, const char*) const;
+  void parameter(const Tbl& f, const char* key, Range, Vec2& value, const char*) const;
+  void parameter(const Tbl& f, const char* key, Range, Rect& value, const char*) const;
+  void parameter(const Tbl& f, const char* key, Range, AttractionLaw& value,
+                 const char* kind) const;
+  void parameter(const Tbl& f, const char* key, Range, std::optional<CentralBody>& value,
+                 const char*) const;
+  template <class E>
+  requires std::is_enum_v<E>
+  void parameter(const Tbl& f, const char* key, Range, E& value, const char*) const {
+    value = f.choice(key, choices(E{}), value);
+  }
   AttractionLaw law(const toml::node& n, const char* owner) const;
   void input(const Tbl& top, Scene& s) const;
   void look(const Tbl& top, Scene& s) const;
 
-  std::string source_;
   std::vector<toml::source_position> bodies_at_;
   std::vector<toml::source_position> fields_at_;
 };
-
-void Tbl::allow(const Keys& keys) const {
-  const toml::key* first = nullptr;
-  for (auto&& [key, value] : *t_) {
-    (void)value;
-    if (std::find(keys.begin(), keys.end(), key.str()) != keys.end()) continue;
-    if (first == nullptr || before(key.source().begin, first->source().begin)) first = &key;
-  }
-  if (first == nullptr) return;
-  std::string m = cat("unknown key ", quote(first->str()), " in ", context_);
-  if (const auto near = nearest(first->str(), keys)) {
-    m += cat(" (did you mean ", quote(*near), "?)");
-  } else {
-    m += cat(" (valid keys: ", join(keys), ")");
-  }
-  const bool top_level_key =
-      std::find(kTopLevelKeys.begin(), kTopLevelKeys.end(), first->str()) != kTopLevelKeys.end();
-  if (top_level_key && t_->source().begin.line < first->source().begin.line) {
-    // TOML's rule that surprises: every key after a [table] or [[table]]
-    // header belongs to that table, up to the next header.
-    m += cat("; '", first->str(),
-             "' is a top-level key, but keys after a table header belong to "
-             "that table: write it above the first [table] or [[table]] header");
-  }
-  r_->fail(first->source().begin, m);
-}
-
-const toml::node& Tbl::require(std::string_view key) const {
-  const toml::node* n = find(key);
-  if (n == nullptr) r_->fail(*t_, cat("missing required key ", quote(key), " in ", context_));
-  return *n;
-}
-
-double Tbl::number(std::string_view key, double fallback, Check check) const {
-  const toml::node* n = find(key);
-  return n != nullptr ? r_->number(*n, label(key), check) : fallback;
-}
-
-bool Tbl::boolean(std::string_view key, bool fallback) const {
-  const toml::node* n = find(key);
-  return n != nullptr ? r_->boolean(*n, label(key)) : fallback;
-}
-
-std::string Tbl::string(std::string_view key, std::string fallback) const {
-  const toml::node* n = find(key);
-  return n != nullptr ? r_->string(*n, label(key)) : fallback;
-}
-
-Vec2 Tbl::vec2(std::string_view key, Vec2 fallback) const {
-  const toml::node* n = find(key);
-  return n != nullptr ? r_->vec2(*n, label(key)) : fallback;
-}
-
-template <class E, std::size_t N>
-E Tbl::choice(std::string_view key, const std::array<Choice<E>, N>& choices, E fallback) const {
-  const toml::node* n = find(key);
-  return n != nullptr ? r_->choice(*n, label(key), choices) : fallback;
-}
-
-const toml::table* Tbl::table(std::string_view key) const {
-  const toml::node* n = find(key);
-  return n != nullptr ? &r_->table_of(*n, label(key)) : nullptr;
-}
-
-const toml::array* Tbl::array(std::string_view key) const {
-  const toml::node* n = find(key);
-  return n != nullptr ? &r_->array_of(*n, label(key), "an array") : nullptr;
-}
 
 Scene Reader::scene(const toml::table& root) {
   const Tbl top(*this, root, "the top level");
   top.allow(kTopLevelKeys);
   Scene s;
-  s.name = top.string("name", std::filesystem::path(source_).stem().string());
+  s.name = top.string("name", std::filesystem::path(source()).stem().string());
   s.description = top.string("description", "");
   if (const toml::node* n = top.find("frames")) s.frames = integer(*n, "frames", 0, max_frames);
   if (const toml::node* n = top.find("seed")) {
@@ -490,7 +232,7 @@ void Reader::world(const Tbl& top, Scene& s) const {
   s.world.update_order = w.choice("update_order", kUpdateOrders, s.world.update_order);
   s.world.arithmetic = w.choice("arithmetic", kArithmetics, s.world.arithmetic);
   if (const toml::node* n = w.find("threads")) {
-    s.world.threads = static_cast<int>(integer(*n, "world.threads", 0, 1024));
+    s.world.threads = static_cast<int>(integer(*n, "world.threads", 0, kMaxThreads));
   }
   if (s.world.arithmetic != Arithmetic::book &&
       (s.world.integrator != Integrator::semi_implicit_euler ||
@@ -597,55 +339,59 @@ BodyGroup Reader::body_group(const toml::table& t, std::size_t total_before) con
     g.speed = draw(b.require("speed"), "speed", Check::any);
   } else {
     // position = [x, y] or x and y; velocity = [vx, vy] or vx and vy.
-    const auto pair = [&](std::string_view both, std::string_view first, std::string_view second,
-                          Draw& a, Draw& c, bool required) {
-      const toml::node* n = b.find(both);
-      const toml::node* na = b.find(first);
-      const toml::node* nc = b.find(second);
-      if (n != nullptr) {
-        if (na != nullptr || nc != nullptr) {
-          fail(*n, cat("give either ", quote(both), " or ", quote(first), " and ", quote(second),
-                       ", not both"));
-        }
-        const Vec2 v = vec2(*n, std::string(both));
-        a = Draw::fixed(v.x);
-        c = Draw::fixed(v.y);
-        return;
-      }
-      if (required && na == nullptr && nc == nullptr) {
-        fail(t, cat("missing required key ", quote(both), " (or ", quote(first), " and ",
-                    quote(second), ") in [[bodies]]"));
-      }
-      if (na != nullptr || required) a = draw(b.require(first), std::string(first), Check::any);
-      if (nc != nullptr || required) c = draw(b.require(second), std::string(second), Check::any);
-    };
-    pair("position", "x", "y", g.x, g.y, true);
-    pair("velocity", "vx", "vy", g.vx, g.vy, false);
+    coordinates(b, "position", "x", "y", g.x, g.y, true);
+    coordinates(b, "velocity", "vx", "vy", g.vx, g.vy, false);
   }
-
-  if (const toml::node* n = b.find("radius")) {
-    if (const auto* rt = n->as_table()) {
-      const Tbl radius(*this, *rt, "'radius'", "radius.");
-      radius.allow({"per_mass", "per_sqrt_mass"});
-      if (rt->size() != 1) {
-        fail(*n, "'radius' must be a number, { per_mass = k } or { per_sqrt_mass = k }");
-      }
-      const bool per_mass = rt->contains("per_mass");
-      const char* key = per_mass ? "per_mass" : "per_sqrt_mass";
-      g.radius.kind = per_mass ? RadiusRule::Kind::per_mass : RadiusRule::Kind::per_sqrt_mass;
-      g.radius.k = number(radius.require(key), radius.label(key), Check::non_negative);
-    } else if (n->is_integer() || n->is_floating_point()) {
-      g.radius = {RadiusRule::Kind::fixed, number(*n, "radius", Check::non_negative)};
-    } else {
-      fail(*n, "'radius' must be a number, { per_mass = k } or { per_sqrt_mass = k }, got " +
-                   std::string(type_name(*n)));
-    }
-  }
+  if (const toml::node* n = b.find("radius")) g.radius = radius(*n);
   if (const toml::node* n = b.find("friction")) {
     g.friction = number(*n, "friction", Check::non_negative);
   }
   g.drag_area = b.number("drag_area", g.drag_area, Check::non_negative);
   return g;
+}
+
+// position = [x, y], or x and y each a number or a draw (the same for velocity).
+void Reader::coordinates(const Tbl& b, std::string_view both, std::string_view first,
+                         std::string_view second, Draw& a, Draw& c, bool required) const {
+  const toml::node* n = b.find(both);
+  const toml::node* na = b.find(first);
+  const toml::node* nc = b.find(second);
+  if (n != nullptr) {
+    if (na != nullptr || nc != nullptr) {
+      fail(*n, cat("give either ", quote(both), " or ", quote(first), " and ", quote(second),
+                   ", not both"));
+    }
+    const Vec2 v = vec2(*n, std::string(both));
+    a = Draw::fixed(v.x);
+    c = Draw::fixed(v.y);
+    return;
+  }
+  if (required && na == nullptr && nc == nullptr) {
+    fail(b.table(), cat("missing required key ", quote(both), " (or ", quote(first), " and ",
+                        quote(second), ") in [[bodies]]"));
+  }
+  if (na != nullptr || required) a = draw(b.require(first), std::string(first), Check::any);
+  if (nc != nullptr || required) c = draw(b.require(second), std::string(second), Check::any);
+}
+
+// A number, { per_mass = k } or { per_sqrt_mass = k }.
+RadiusRule Reader::radius(const toml::node& n) const {
+  if (const auto* rt = n.as_table()) {
+    const Tbl radius(*this, *rt, "'radius'", "radius.");
+    radius.allow({"per_mass", "per_sqrt_mass"});
+    if (rt->size() != 1) {
+      fail(n, "'radius' must be a number, { per_mass = k } or { per_sqrt_mass = k }");
+    }
+    const bool per_mass = rt->contains("per_mass");
+    const char* key = per_mass ? "per_mass" : "per_sqrt_mass";
+    return {per_mass ? RadiusRule::Kind::per_mass : RadiusRule::Kind::per_sqrt_mass,
+            number(radius.require(key), radius.label(key), Check::non_negative)};
+  }
+  if (n.is_integer() || n.is_floating_point()) {
+    return {RadiusRule::Kind::fixed, number(n, "radius", Check::non_negative)};
+  }
+  fail(n, "'radius' must be a number, { per_mass = k } or { per_sqrt_mass = k }, got " +
+              std::string(type_name(n)));
 }
 
 AttractionLaw Reader::law(const toml::node& n, const char* owner) const {
@@ -671,147 +417,164 @@ AttractionLaw Reader::law(const toml::node& n, const char* owner) const {
   return law;
 }
 
-SceneField Reader::field(const toml::table& t) const {
-  const toml::node& type_node = Tbl(*this, t, "[[fields]]").require("type");
-  const std::string type = string(type_node, "type");
-  if (type == "custom_force") {
-    fail(type_node,
-         "a custom_force can't be written in a scene file: its force is C++ code "
-         "(add it to the world with World::add)");
-  }
-  if (std::find(kFieldTypes.begin(), kFieldTypes.end(), type) == kFieldTypes.end()) {
-    fail(type_node, unknown_choice("type", type, kFieldTypes));
-  }
-  const Tbl f(*this, t, cat("[[fields]] of type ", quote(type)));
-  const auto allow = [&](std::initializer_list<std::string_view> own) {
-    Keys keys = {"type"};
-    keys.insert(keys.end(), own.begin(), own.end());
-    for (const std::string_view k :
-         {"enabled", "visible", "while_pressed", "follow_mouse", "draggable"}) {
-      keys.push_back(k);
-    }
-    f.allow(keys);
+// --- fields: read as their FieldKind (calder/fields.hpp) describes them ---
+
+// The keys of every [[fields]] table besides "type" and its kind's parameters.
+const Keys kFieldOptions = {"enabled", "visible", "while_pressed", "follow_mouse", "draggable"};
+
+// Calls visit.template operator()<F>() for the field kind F named `type`; false when none is.
+template <class Visit, std::size_t... I>
+bool with_kind_named(std::string_view type, Visit&& visit, std::index_sequence<I...>) {
+  const auto named = [&]<class F>() {
+    if (type != FieldKind<F>::name) return false;
+    visit.template operator()<F>();
+    return true;
   };
+  return (named.template operator()<std::variant_alternative_t<I, Field>>() || ...);
+}
 
+template <class Visit>
+bool with_kind_named(std::string_view type, Visit&& visit) {
+  return with_kind_named(type, visit, std::make_index_sequence<std::variant_size_v<Field>>());
+}
+
+// The field types a file may name, in the order docs/SCENES.md lists them.
+template <std::size_t... I>
+Keys scene_file_types(std::index_sequence<I...>) {
+  Keys out;
+  const auto add = [&]<class F>() {
+    if (in_scene_files<F>()) out.push_back(FieldKind<F>::name);
+  };
+  (add.template operator()<std::variant_alternative_t<I, Field>>(), ...);
+  return out;
+}
+const Keys kFieldTypes = scene_file_types(std::make_index_sequence<std::variant_size_v<Field>>());
+
+Check check_of(Range range) {
+  switch (range) {
+    case Range::finite:
+      break;
+    case Range::positive:
+      return Check::positive;
+    case Range::non_negative:
+    case Range::unit_interval:  // validate checks <= 1, at the [[fields]] table
+      return Check::non_negative;
+  }
+  return Check::any;
+}
+
+SceneField Reader::field(const toml::table& t) const {
+  const std::string type = field_type(t);
+  const Tbl f(*this, t, cat("[[fields]] of type ", quote(type)));
   SceneField out;
-  if (type == "gravity") {
-    allow({"g", "scale_by_mass"});
-    Gravity g;
-    g.g = f.vec2("g", g.g);
-    g.scale_by_mass = f.boolean("scale_by_mass", g.scale_by_mass);
-    out.field = g;
-  } else if (type == "wind") {
-    allow({"force"});
-    Wind w;
-    w.force = f.vec2("force", w.force);
-    out.field = w;
-  } else if (type == "noise_wind") {
-    allow({"strength", "rate", "offset", "accumulate"});
-    NoiseWind w;
-    w.strength = f.number("strength", w.strength);
-    w.rate = f.number("rate", w.rate);
-    w.offset = f.number("offset", w.offset);
-    w.accumulate = f.boolean("accumulate", w.accumulate);
-    out.field = w;
-  } else if (type == "helium") {
-    allow({"lift"});
-    Helium h;
-    h.lift = f.number("lift", h.lift);
-    out.field = h;
-  } else if (type == "fan") {
-    allow({"position", "strength", "reach"});
-    Fan fan;
-    fan.position = f.vec2("position", fan.position);
-    fan.strength = f.number("strength", fan.strength);
-    fan.reach = f.number("reach", fan.reach, Check::positive);
-    out.field = fan;
-  } else if (type == "edge_force") {
-    allow({"strength", "margin"});
-    EdgeForce e;
-    e.strength = f.number("strength", e.strength);
-    e.margin = f.number("margin", e.margin, Check::positive);
-    out.field = e;
-  } else if (type == "friction") {
-    allow({"mu", "normal", "surface", "tolerance", "never_reverse"});
-    Friction fr;
-    fr.mu = f.number("mu", fr.mu, Check::non_negative);
-    fr.normal = f.number("normal", fr.normal, Check::non_negative);
-    fr.surface = f.choice("surface", kEdges, fr.surface);
-    fr.tolerance = f.number("tolerance", fr.tolerance, Check::non_negative);
-    fr.never_reverse = f.boolean("never_reverse", fr.never_reverse);
-    out.field = fr;
-  } else if (type == "liquid") {
-    allow({"region", "c", "never_reverse"});
-    Liquid l;
-    if (const toml::node* n = f.find("region")) {
-      const std::vector<double> r = numbers(*n, "region", 4, "an array of 4 numbers [x, y, w, h]");
-      const toml::array& a = *n->as_array();
-      number(a[2], "region[2]", Check::non_negative);
-      number(a[3], "region[3]", Check::non_negative);
-      l.region = {r[0], r[1], r[2], r[3]};
-    }
-    l.c = f.number("c", l.c, Check::non_negative);
-    l.never_reverse = f.boolean("never_reverse", l.never_reverse);
-    out.field = l;
-  } else if (type == "drag") {
-    allow({"c", "never_reverse"});
-    Drag d;
-    d.c = f.number("c", d.c, Check::non_negative);
-    d.never_reverse = f.boolean("never_reverse", d.never_reverse);
-    out.field = d;
-  } else if (type == "lift") {
-    allow({"coefficient"});
-    Lift l;
-    l.coefficient = f.number("coefficient", l.coefficient);
-    out.field = l;
-  } else if (type == "attractor") {
-    allow({"position", "mass", "law"});
-    Attractor a;
-    a.position = f.vec2("position", a.position);
-    a.mass = f.number("mass", a.mass, Check::positive);
-    if (const toml::node* n = f.find("law")) a.law = law(*n, "attractor");
-    out.field = a;
-  } else {  // mutual_attraction
-    allow({"law", "order", "central", "method", "theta", "single_precision", "threads"});
-    MutualAttraction m;
-    if (const toml::node* n = f.find("law")) m.law = law(*n, "mutual_attraction");
-    m.order = f.choice("order", kPairOrders, m.order);
-    m.method = f.choice("method", kNBodyMethods, m.method);
-    m.theta = f.number("theta", m.theta, Check::non_negative);
-    m.single_precision = f.boolean("single_precision", m.single_precision);
-    if (const toml::node* n = f.find("threads")) {
-      m.threads = static_cast<int>(integer(*n, "threads", 0, 1024));
-    }
-    if (const toml::node* n = f.find("central")) {
-      const Tbl c(*this, table_of(*n, "central", "an inline table { position = [x, y], mass = m }"),
-                  "'central'", "central.");
-      c.allow({"position", "mass"});
-      CentralBody central;
-      central.position = c.vec2("position", central.position);
-      central.mass = c.number("mass", central.mass, Check::positive);
-      m.central = central;
-    }
-    out.field = m;
-  }
-
-  const bool enabled = f.boolean("enabled", true);
-  std::visit([&](auto& field) { field.enabled = enabled; }, out.field);
-  out.visible = f.boolean("visible", out.visible);
-  out.binding.while_pressed = f.boolean("while_pressed", false);
-  out.binding.follow_mouse = f.boolean("follow_mouse", false);
-  out.binding.draggable = f.boolean("draggable", false);
-  if (out.binding.follow_mouse && type != "fan" && type != "attractor") {
-    fail(f.require("follow_mouse"), "only a fan or an attractor can follow the mouse");
-  }
-  if (out.binding.draggable && type != "attractor") {
-    fail(f.require("draggable"), "only an attractor can be dragged");
-  }
+  with_kind_named(type, [&]<class F>() { out.field = field_parameters<F>(f); });
+  field_options(f, out);
   try {
     calder::validate(out.field);
   } catch (const Error& e) {
     fail(t, e.what());
   }
   return out;
+}
+
+// The value of "type", a kind a file may name.
+std::string Reader::field_type(const toml::table& t) const {
+  const toml::node& type_node = Tbl(*this, t, "[[fields]]").require("type");
+  std::string type = string(type_node, "type");
+  bool in_files = false;
+  if (!with_kind_named(type, [&]<class F>() { in_files = in_scene_files<F>(); })) {
+    fail(type_node, unknown_choice("type", type, kFieldTypes));
+  }
+  if (!in_files) {
+    fail(type_node, cat("a ", type,
+                        " can't be written in a scene file: its force is C++ code "
+                        "(add it to the world with World::add)"));
+  }
+  return type;
+}
+
+// The keys a field of kind F may hold, then its parameters.
+template <class F>
+Field Reader::field_parameters(const Tbl& f) const {
+  using Kind = FieldKind<F>;
+  Keys keys = {"type"};
+  std::apply([&](const auto&... p) { (keys.push_back(p.key), ...); }, Kind::parameters);
+  keys.insert(keys.end(), kFieldOptions.begin(), kFieldOptions.end());
+  f.allow(keys);
+  F field;
+  std::apply(
+      [&](const auto&... p) { (parameter(f, p.key, p.range, field.*p.member, Kind::name), ...); },
+      Kind::parameters);
+  return field;
+}
+
+// enabled, visible and how the field follows the mouse.
+void Reader::field_options(const Tbl& f, SceneField& out) const {
+  const bool enabled = f.boolean("enabled", true);
+  std::visit([&](auto& field) { field.enabled = enabled; }, out.field);
+  out.visible = f.boolean("visible", out.visible);
+  out.binding.while_pressed = f.boolean("while_pressed", false);
+  out.binding.follow_mouse = f.boolean("follow_mouse", false);
+  out.binding.draggable = f.boolean("draggable", false);
+  if (out.binding.follow_mouse && !can_follow_mouse(out.field)) {
+    fail(f.require("follow_mouse"), cat("only ", kinds_following_mouse(), " can follow the mouse"));
+  }
+  if (out.binding.draggable && !can_be_dragged(out.field)) {
+    fail(f.require("draggable"), "only an attractor can be dragged");
+  }
+}
+
+void Reader::parameter(const Tbl& f, const char* key, Range range, double& value,
+                       const char*) const {
+  value = f.number(key, value, check_of(range));
+}
+
+// Integers of a field are thread counts.
+void Reader::parameter(const Tbl& f, const char* key, Range range, int& value, const char*) const {
+  if (const toml::node* n = f.find(key)) {
+    const std::int64_t min = range == Range::positive ? 1 : 0;
+    value = static_cast<int>(integer(*n, f.label(key), min, kMaxThreads));
+  }
+}
+
+void Reader::parameter(const Tbl& f, const char* key, Range, bool& value, const char*) const {
+  value = f.boolean(key, value);
+}
+
+void Reader::parameter(const Tbl& f, const char* key, Range, Vec2& value, const char*) const {
+  value = f.vec2(key, value);
+}
+
+// [x, y, w, h], w and h >= 0.
+void Reader::parameter(const Tbl& f, const char* key, Range, Rect& value, const char*) const {
+  const toml::node* n = f.find(key);
+  if (n == nullptr) return;
+  const std::string label = f.label(key);
+  const std::vector<double> r = numbers(*n, label, 4, "an array of 4 numbers [x, y, w, h]");
+  const toml::array& a = *n->as_array();
+  number(a[2], label + "[2]", Check::non_negative);
+  number(a[3], label + "[3]", Check::non_negative);
+  value = {r[0], r[1], r[2], r[3]};
+}
+
+void Reader::parameter(const Tbl& f, const char* key, Range, AttractionLaw& value,
+                       const char* kind) const {
+  if (const toml::node* n = f.find(key)) value = law(*n, kind);
+}
+
+// { position = [x, y], mass = m }.
+void Reader::parameter(const Tbl& f, const char* key, Range, std::optional<CentralBody>& value,
+                       const char*) const {
+  const toml::node* n = f.find(key);
+  if (n == nullptr) return;
+  const std::string label = f.label(key);
+  const Tbl c(*this, table_of(*n, label, "an inline table { position = [x, y], mass = m }"),
+              quote(label), label + ".");
+  c.allow({"position", "mass"});
+  CentralBody central;
+  central.position = c.vec2("position", central.position);
+  central.mass = c.number("mass", central.mass, Check::positive);
+  value = central;
 }
 
 void Reader::input(const Tbl& top, Scene& s) const {

@@ -22,6 +22,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 namespace calder::scene_file_detail {
@@ -65,203 +66,247 @@ inline std::optional<std::pair<char32_t, std::size_t>> decode_utf8(std::string_v
   return std::pair<char32_t, std::size_t>{cp, length};
 }
 
-// The first problem of the text, if any (see above).
-inline std::optional<TextProblem> check_text(std::string_view text) {
+// Scans a text once, character by character, for its first problem (see above).
+class TextScanner {
+ public:
+  explicit TextScanner(std::string_view text) : text_(text) {}
+
+  std::optional<TextProblem> first_problem() {
+    while (i_ < text_.size()) {
+      const auto decoded = decode_utf8(text_, i_);
+      if (!decoded) return problem(i_, "the file is not valid UTF-8");
+      const auto [cp, length] = *decoded;
+      if (cp == '\n') {
+        if (auto p = line_break()) return p;
+        continue;
+      }
+      if (cp < 0x20 && cp != '\t' && cp != '\r') {
+        return problem(i_,
+                       "control character " + hex(cp) + " (only tab and line breaks may appear)");
+      }
+      if (cp == 0x7F) return problem(i_, "control character U+007F");
+      moved_ = false;
+      if (auto p = character(cp)) return p;
+      if (!moved_) i_ += length;
+    }
+    if (text_.size() - line_start_ > kMaxLineBytes) return line_too_long();
+    return std::nullopt;
+  }
+
+ private:
   enum class In { code, basic, literal, ml_basic, ml_literal, comment };
-  In in = In::code;
-  std::size_t line = 1;
-  std::size_t line_start = 0;
   // Each open '[' or '{' of a value, with the nesting it adds (1 + the parts
   // of the key that led to it); a table header adds its parts.
   struct Open {
     char bracket;
     std::size_t depth;
   };
-  std::vector<Open> open;
-  std::size_t depth = 0;              // sum of the open entries' depths
-  bool expect_key = true;             // at the start of a key-value or a header
-  bool in_key = false;                // between a key's first character and its '=' or ']'
-  bool in_header = false;             // the key is a [table] or [[array]] header
-  std::size_t key_parts = 0;          // dots seen in the key so far, plus one
-  std::size_t key_start = 0;          // byte offset of the key
-  std::size_t value_key_parts = 0;    // parts of the key whose value comes next
-  std::size_t header_parts = 0;       // parts of the last table header
-  bool after_escape_newline = false;  // in a """ string, after a line-ending backslash
 
-  const auto problem = [&](std::size_t at, std::string what) {
-    return TextProblem{line, at - line_start + 1, std::move(what)};
-  };
-  const auto hex = [](char32_t cp) {
+  [[nodiscard]] TextProblem problem(std::size_t at, std::string what) const {
+    return TextProblem{line_, at - line_start_ + 1, std::move(what)};
+  }
+  [[nodiscard]] TextProblem line_too_long() const {
+    return problem(line_start_, "a line longer than " + std::to_string(kMaxLineBytes) +
+                                    " bytes (the limit of scene files)");
+  }
+  [[nodiscard]] TextProblem too_deep(std::size_t at) const {
+    return problem(at, "keys, tables and arrays nested more than " + std::to_string(kMaxNesting) +
+                           " deep (the limit of scene files)");
+  }
+  static std::string hex(char32_t cp) {
     static const char* digits = "0123456789ABCDEF";
     std::string s = "U+";
     const int width = cp > 0xFFFF ? 6 : 4;
     for (int shift = (width - 1) * 4; shift >= 0; shift -= 4) s += digits[(cp >> shift) & 0xF];
     return s;
-  };
-  const auto starts = [&](std::size_t i, std::string_view s) {
-    return text.compare(i, s.size(), s) == 0;
-  };
+  }
+  [[nodiscard]] bool starts(std::string_view s) const {
+    return text_.compare(i_, s.size(), s) == 0;
+  }
+  // Moves past n bytes (the step takes care of the position itself).
+  void skip(std::size_t n) {
+    i_ += n;
+    moved_ = true;
+  }
 
-  for (std::size_t i = 0; i < text.size();) {
-    const auto decoded = decode_utf8(text, i);
-    if (!decoded) return problem(i, "the file is not valid UTF-8");
-    const auto [cp, length] = *decoded;
-    const char c = text[i];
-
-    if (cp == '\n') {
-      if (i - line_start > kMaxLineBytes) {
-        return problem(line_start, "a line longer than " + std::to_string(kMaxLineBytes) +
-                                       " bytes (the limit of scene files)");
-      }
-      ++line;
-      line_start = i + 1;
-      if (in == In::basic || in == In::literal || in == In::comment) in = In::code;
-      if (in == In::code && open.empty()) {
-        expect_key = true;
-        in_key = false;
-        in_header = false;
-      }
-      ++i;
-      continue;
+  std::optional<TextProblem> line_break() {
+    if (i_ - line_start_ > kMaxLineBytes) return line_too_long();
+    ++line_;
+    line_start_ = i_ + 1;
+    if (in_ == In::basic || in_ == In::literal || in_ == In::comment) in_ = In::code;
+    if (in_ == In::code && open_.empty()) {
+      expect_key_ = true;
+      in_key_ = false;
+      in_header_ = false;
     }
-    if (cp < 0x20 && cp != '\t' && cp != '\r') {
-      return problem(i, "control character " + hex(cp) + " (only tab and line breaks may appear)");
-    }
-    if (cp == 0x7F) return problem(i, "control character U+007F");
+    ++i_;
+    return std::nullopt;
+  }
 
-    switch (in) {
+  // Any character but a line break or a control character.
+  std::optional<TextProblem> character(char32_t cp) {
+    switch (in_) {
       case In::comment:
         break;
       case In::literal:
-        if (c == '\'') in = In::code;
+        if (text_[i_] == '\'') in_ = In::code;
         break;
       case In::ml_literal:
-        if (starts(i, "'''")) {
-          i += 3;
-          while (i < text.size() && text[i] == '\'') ++i;
-          in = In::code;
-          continue;
-        }
+        if (starts("'''")) close_multiline('\'');
         break;
       case In::basic:
       case In::ml_basic:
-        if (after_escape_newline && cp != ' ' && cp != '\t' && cp != '\r') {
-          after_escape_newline = false;
-          if (cp >= 0x80) {
-            return problem(i, "non-ASCII text right after a line-ending backslash");
-          }
-        }
-        if (c == '\\') {
-          if (i + 1 < text.size()) {
-            const unsigned char next = static_cast<unsigned char>(text[i + 1]);
-            if (next >= 0x80) return problem(i, "a backslash before non-ASCII text");
-            if (in == In::ml_basic &&
-                (next == ' ' || next == '\t' || next == '\n' || next == '\r')) {
-              after_escape_newline = true;
-            }
-          }
-          // The escaped character is ASCII (checked above); a line break
-          // stays to be counted.
-          i += i + 1 < text.size() && text[i + 1] == '\n' ? std::size_t{1} : std::size_t{2};
-          continue;
-        }
-        if (in == In::ml_basic && starts(i, "\"\"\"")) {
-          i += 3;
-          while (i < text.size() && text[i] == '"') ++i;
-          in = In::code;
-          after_escape_newline = false;
-          continue;
-        }
-        if (in == In::basic && c == '"') in = In::code;
-        break;
-      case In::code: {
-        if (cp >= 0x80) {
-          return problem(i, "non-ASCII character " + hex(cp) +
-                                " outside a string or comment (TOML allows it only there)");
-        }
-        if (c == ' ' || c == '\t' || c == '\r') break;
-        if (c == '#') {
-          in = In::comment;
-          break;
-        }
-        if (expect_key && !in_key) {
-          // A key-value or, at the top level, a table header begins here.
-          in_key = true;
-          key_parts = 1;
-          key_start = i;
-          in_header = false;
-          if (c == '[' && open.empty()) {
-            in_header = true;
-            i += starts(i, "[[") ? std::size_t{2} : std::size_t{1};
-            key_start = i;
-            continue;
-          }
-        }
-        if (in_key) {
-          if (c == '.') ++key_parts;
-          const bool key_ends = in_header ? c == ']' : c == '=';
-          // The key's bytes so far: through this character, or up to the
-          // '=' or ']' without the spaces before it (a quoted key included).
-          std::size_t key_end = key_ends ? i : i + 1;
-          while (key_ends && key_end > key_start &&
-                 (text[key_end - 1] == ' ' || text[key_end - 1] == '\t')) {
-            --key_end;
-          }
-          if (key_end - key_start > kMaxKeyBytes) {
-            return problem(key_start, "a key longer than " + std::to_string(kMaxKeyBytes) +
-                                          " bytes (the limit of scene files)");
-          }
-          if ((in_header || !open.empty() ? 0 : header_parts) + depth + key_parts > kMaxNesting) {
-            return problem(key_start, "keys, tables and arrays nested more than " +
-                                          std::to_string(kMaxNesting) +
-                                          " deep (the limit of scene files)");
-          }
-          if (key_ends) {
-            in_key = false;
-            expect_key = false;
-            value_key_parts = key_parts;
-            if (in_header) {
-              header_parts = key_parts;
-              value_key_parts = 0;
-              in_header = false;
-              i += starts(i, "]]") ? std::size_t{2} : std::size_t{1};
-              continue;
-            }
-          }
-        } else if (c == '[' || c == '{') {
-          const std::size_t adds = (open.empty() ? header_parts : 0) + value_key_parts + 1;
-          value_key_parts = 0;
-          open.push_back({c, adds});
-          depth += adds;
-          if (depth > kMaxNesting) {
-            return problem(i, "keys, tables and arrays nested more than " +
-                                  std::to_string(kMaxNesting) + " deep (the limit of scene files)");
-          }
-          expect_key = c == '{';
-        } else if ((c == ']' || c == '}') && !open.empty()) {
-          depth -= open.back().depth;
-          open.pop_back();
-          expect_key = false;
-        } else if (c == ',' && !open.empty() && open.back().bracket == '{') {
-          expect_key = true;
-        }
-        if (c == '"' || c == '\'') {
-          const bool triple = starts(i, c == '"' ? "\"\"\"" : "'''");
-          in = c == '"' ? (triple ? In::ml_basic : In::basic)
-                        : (triple ? In::ml_literal : In::literal);
-          i += triple ? std::size_t{3} : std::size_t{1};
-          continue;
-        }
-        break;
-      }
+        return in_basic_string(cp);
+      case In::code:
+        return in_code(cp);
     }
-    i += length;
+    return std::nullopt;
   }
-  if (text.size() - line_start > kMaxLineBytes) {
-    return problem(line_start, "a line longer than " + std::to_string(kMaxLineBytes) +
-                                   " bytes (the limit of scene files)");
+
+  // Past the closing quotes of a multi-line string (and quotes just before them).
+  void close_multiline(char quote) {
+    skip(3);
+    while (i_ < text_.size() && text_[i_] == quote) ++i_;
+    in_ = In::code;
   }
-  return std::nullopt;
+
+  std::optional<TextProblem> in_basic_string(char32_t cp) {
+    const char c = text_[i_];
+    if (after_escape_newline_ && cp != ' ' && cp != '\t' && cp != '\r') {
+      after_escape_newline_ = false;
+      if (cp >= 0x80) return problem(i_, "non-ASCII text right after a line-ending backslash");
+    }
+    if (c == '\\') {
+      if (i_ + 1 < text_.size()) {
+        const unsigned char next = static_cast<unsigned char>(text_[i_ + 1]);
+        if (next >= 0x80) return problem(i_, "a backslash before non-ASCII text");
+        if (in_ == In::ml_basic && (next == ' ' || next == '\t' || next == '\n' || next == '\r')) {
+          after_escape_newline_ = true;
+        }
+      }
+      // The escaped character is ASCII (checked above); a line break stays to be counted.
+      skip(i_ + 1 < text_.size() && text_[i_ + 1] == '\n' ? std::size_t{1} : std::size_t{2});
+      return std::nullopt;
+    }
+    if (in_ == In::ml_basic && starts("\"\"\"")) {
+      close_multiline('"');
+      after_escape_newline_ = false;
+      return std::nullopt;
+    }
+    if (in_ == In::basic && c == '"') in_ = In::code;
+    return std::nullopt;
+  }
+
+  std::optional<TextProblem> in_code(char32_t cp) {
+    const char c = text_[i_];
+    if (cp >= 0x80) {
+      return problem(i_, "non-ASCII character " + hex(cp) +
+                             " outside a string or comment (TOML allows it only there)");
+    }
+    if (c == ' ' || c == '\t' || c == '\r') return std::nullopt;
+    if (c == '#') {
+      in_ = In::comment;
+      return std::nullopt;
+    }
+    if (expect_key_ && !in_key_ && begin_key(c)) return std::nullopt;
+    if (in_key_) {
+      if (auto p = key_character(c)) return p;
+      if (moved_) return std::nullopt;
+    } else {
+      if (auto p = bracket_or_comma(c)) return p;
+    }
+    if (c == '"' || c == '\'') {
+      const bool triple = starts(c == '"' ? "\"\"\"" : "'''");
+      in_ =
+          c == '"' ? (triple ? In::ml_basic : In::basic) : (triple ? In::ml_literal : In::literal);
+      skip(triple ? std::size_t{3} : std::size_t{1});
+    }
+    return std::nullopt;
+  }
+
+  // A key-value or, at the top level, a table header begins here; true when
+  // it is a header (then the scanner is past its brackets).
+  bool begin_key(char c) {
+    in_key_ = true;
+    key_parts_ = 1;
+    key_start_ = i_;
+    in_header_ = false;
+    if (c != '[' || !open_.empty()) return false;
+    in_header_ = true;
+    skip(starts("[[") ? std::size_t{2} : std::size_t{1});
+    key_start_ = i_;
+    return true;
+  }
+
+  std::optional<TextProblem> key_character(char c) {
+    if (c == '.') ++key_parts_;
+    const bool key_ends = in_header_ ? c == ']' : c == '=';
+    // The key's bytes so far: through this character, or up to the '=' or
+    // ']' without the spaces before it (a quoted key included).
+    std::size_t key_end = key_ends ? i_ : i_ + 1;
+    while (key_ends && key_end > key_start_ &&
+           (text_[key_end - 1] == ' ' || text_[key_end - 1] == '\t')) {
+      --key_end;
+    }
+    if (key_end - key_start_ > kMaxKeyBytes) {
+      return problem(key_start_, "a key longer than " + std::to_string(kMaxKeyBytes) +
+                                     " bytes (the limit of scene files)");
+    }
+    if ((in_header_ || !open_.empty() ? 0 : header_parts_) + depth_ + key_parts_ > kMaxNesting) {
+      return too_deep(key_start_);
+    }
+    if (!key_ends) return std::nullopt;
+    in_key_ = false;
+    expect_key_ = false;
+    value_key_parts_ = key_parts_;
+    if (in_header_) {
+      header_parts_ = key_parts_;
+      value_key_parts_ = 0;
+      in_header_ = false;
+      skip(starts("]]") ? std::size_t{2} : std::size_t{1});
+    }
+    return std::nullopt;
+  }
+
+  std::optional<TextProblem> bracket_or_comma(char c) {
+    if (c == '[' || c == '{') {
+      const std::size_t adds = (open_.empty() ? header_parts_ : 0) + value_key_parts_ + 1;
+      value_key_parts_ = 0;
+      open_.push_back({c, adds});
+      depth_ += adds;
+      if (depth_ > kMaxNesting) return too_deep(i_);
+      expect_key_ = c == '{';
+    } else if ((c == ']' || c == '}') && !open_.empty()) {
+      depth_ -= open_.back().depth;
+      open_.pop_back();
+      expect_key_ = false;
+    } else if (c == ',' && !open_.empty() && open_.back().bracket == '{') {
+      expect_key_ = true;
+    }
+    return std::nullopt;
+  }
+
+  std::string_view text_;
+  std::size_t i_ = 0;   // byte offset of the character being scanned
+  bool moved_ = false;  // the step moved i_ itself
+  In in_ = In::code;
+  std::size_t line_ = 1;
+  std::size_t line_start_ = 0;
+  std::vector<Open> open_;
+  std::size_t depth_ = 0;              // sum of the open entries' depths
+  bool expect_key_ = true;             // at the start of a key-value or a header
+  bool in_key_ = false;                // between a key's first character and its '=' or ']'
+  bool in_header_ = false;             // the key is a [table] or [[array]] header
+  std::size_t key_parts_ = 0;          // dots seen in the key so far, plus one
+  std::size_t key_start_ = 0;          // byte offset of the key
+  std::size_t value_key_parts_ = 0;    // parts of the key whose value comes next
+  std::size_t header_parts_ = 0;       // parts of the last table header
+  bool after_escape_newline_ = false;  // in a """ string, after a line-ending backslash
+};
+
+// The first problem of the text, if any (see above).
+inline std::optional<TextProblem> check_text(std::string_view text) {
+  return TextScanner(text).first_problem();
 }
 
 }  // namespace calder::scene_file_detail

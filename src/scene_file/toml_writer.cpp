@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdio>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <type_traits>
@@ -26,6 +27,7 @@ namespace calder {
 namespace {
 
 using scene_file_detail::cat;
+using scene_file_detail::choices;
 using scene_file_detail::kArithmetics;
 using scene_file_detail::kBoundaryKinds;
 using scene_file_detail::kBoundaryTimings;
@@ -184,13 +186,6 @@ void write_body_group(Writer& w, const BodyGroup& g) {
   w.line("drag_area", num(g.drag_area));
 }
 
-template <class... Ts>
-struct Overloaded : Ts... {
-  using Ts::operator()...;
-};
-template <class... Ts>
-Overloaded(Ts...) -> Overloaded<Ts...>;
-
 // [boundary] (with its timing) or [edges_first]; inset and periodic only
 // when they are not the defaults.
 void write_boundary(Writer& w, const char* header, const Boundary& b, bool timing) {
@@ -213,77 +208,111 @@ void write_boundary(Writer& w, const char* header, const Boundary& b, bool timin
   if (!b.periodic) w.line("periodic", boolean(false));
 }
 
+// One parameter of a field kind (FieldKind::parameters), by its type.
+void write_value(Writer& w, const char* key, double value) { w.line(key, num(value)); }
+void write_value(Writer& w, const char* key, int value) { w.line(key, std::to_string(value)); }
+void write_value(Writer& w, const char* key, bool value) { w.line(key, boolean(value)); }
+void write_value(Writer& w, const char* key, Vec2 value) { w.line(key, vec(value)); }
+void write_value(Writer& w, const char* key, const Rect& r) {
+  w.line(key, cat("[", num(r.x), ", ", num(r.y), ", ", num(r.w), ", ", num(r.h), "]"));
+}
+void write_value(Writer& w, const char* key, const AttractionLaw& value) {
+  w.line(key, law(value));
+}
+void write_value(Writer& w, const char* key, const std::optional<CentralBody>& central) {
+  if (!central) return;
+  w.line(key, cat("{ position = ", vec(central->position), ", mass = ", num(central->mass), " }"));
+}
+template <class E>
+requires std::is_enum_v<E>
+void write_value(Writer& w, const char* key, E value) {
+  w.line(key, str(name_of(choices(E{}), value)));
+}
+
 void write_field(Writer& w, const SceneField& sf) {
   w.header("[[fields]]");
   w.line("type", str(field_name(sf.field)));
-  std::visit(Overloaded{
-                 [&](const Gravity& f) {
-                   w.line("g", vec(f.g));
-                   w.line("scale_by_mass", boolean(f.scale_by_mass));
-                 },
-                 [&](const Wind& f) { w.line("force", vec(f.force)); },
-                 [&](const NoiseWind& f) {
-                   w.line("strength", num(f.strength));
-                   w.line("rate", num(f.rate));
-                   w.line("offset", num(f.offset));
-                   if (f.accumulate) w.line("accumulate", boolean(true));
-                 },
-                 [&](const Helium& f) { w.line("lift", num(f.lift)); },
-                 [&](const Fan& f) {
-                   w.line("position", vec(f.position));
-                   w.line("strength", num(f.strength));
-                   w.line("reach", num(f.reach));
-                 },
-                 [&](const EdgeForce& f) {
-                   w.line("strength", num(f.strength));
-                   w.line("margin", num(f.margin));
-                 },
-                 [&](const Friction& f) {
-                   w.line("mu", num(f.mu));
-                   w.line("normal", num(f.normal));
-                   w.line("surface", str(name_of(kEdges, f.surface)));
-                   w.line("tolerance", num(f.tolerance));
-                   w.line("never_reverse", boolean(f.never_reverse));
-                 },
-                 [&](const Liquid& f) {
-                   w.line("region", cat("[", num(f.region.x), ", ", num(f.region.y), ", ",
-                                        num(f.region.w), ", ", num(f.region.h), "]"));
-                   w.line("c", num(f.c));
-                   w.line("never_reverse", boolean(f.never_reverse));
-                 },
-                 [&](const Drag& f) {
-                   w.line("c", num(f.c));
-                   w.line("never_reverse", boolean(f.never_reverse));
-                 },
-                 [&](const Lift& f) { w.line("coefficient", num(f.coefficient)); },
-                 [&](const Attractor& f) {
-                   w.line("position", vec(f.position));
-                   w.line("mass", num(f.mass));
-                   w.line("law", law(f.law));
-                 },
-                 [&](const MutualAttraction& f) {
-                   w.line("law", law(f.law));
-                   w.line("order", str(name_of(kPairOrders, f.order)));
-                   if (f.method != NBodyMethod::exact) {
-                     w.line("method", str(name_of(kNBodyMethods, f.method)));
-                     w.line("theta", num(f.theta));
-                     w.line("single_precision", boolean(f.single_precision));
-                     w.line("threads", std::to_string(f.threads));
-                   }
-                   if (f.central) {
-                     w.line("central", cat("{ position = ", vec(f.central->position),
-                                           ", mass = ", num(f.central->mass), " }"));
-                   }
-                 },
-                 [&](const CustomForce&) {},
-             },
-             sf.field);
+  std::visit(
+      [&](const auto& f) {
+        std::apply(
+            [&](const auto&... p) {
+              ((p.written == nullptr || p.written(f) ? write_value(w, p.key, f.*p.member) : void()),
+               ...);
+            },
+            FieldKind<std::decay_t<decltype(f)>>::parameters);
+      },
+      sf.field);
   const bool enabled = std::visit([](const auto& f) { return f.enabled; }, sf.field);
   if (!enabled) w.line("enabled", "false");
   if (!sf.visible) w.line("visible", "false");
   if (sf.binding.while_pressed) w.line("while_pressed", "true");
   if (sf.binding.follow_mouse) w.line("follow_mouse", "true");
   if (sf.binding.draggable) w.line("draggable", "true");
+}
+
+// A custom attraction law is C++ code; other parameters are written as they are.
+void require_writable_value(const AttractionLaw& law, const std::string& where) {
+  if (law.custom) {
+    throw Error(where + ": a custom attraction law is C++ code, which a scene file can't hold");
+  }
+}
+template <class T>
+void require_writable_value(const T&, const std::string&) {}
+
+// Throws when a field is C++ code: a custom force, a custom attraction law.
+void require_writable(const Field& field, const std::string& where) {
+  std::visit(
+      [&](const auto& f) {
+        using F = std::decay_t<decltype(f)>;
+        if (!in_scene_files<F>()) {
+          throw Error(where + ": a custom force is C++ code, which a scene file can't hold");
+        }
+        std::apply([&](const auto&... p) { (require_writable_value(f.*p.member, where), ...); },
+                   FieldKind<F>::parameters);
+      },
+      field);
+}
+
+// [input] and [look] list only what differs from the defaults.
+void write_input(Writer& w, const InputScript& in) {
+  const bool mouse_moved = !same(in.mouse.x, 0.0) || !same(in.mouse.y, 0.0);
+  if (!in.mouse_pressed.empty() || mouse_moved || !in.moves.empty()) {
+    w.header("[input]");
+    if (!in.mouse_pressed.empty()) {
+      std::string ranges;
+      for (const FrameRange& r : in.mouse_pressed) {
+        if (!ranges.empty()) ranges += ", ";
+        ranges += cat("[", std::to_string(r.first), ", ", std::to_string(r.last), "]");
+      }
+      w.line("mouse_pressed", "[" + ranges + "]");
+    }
+    if (mouse_moved) w.line("mouse", vec(in.mouse));
+    if (!in.moves.empty()) {
+      std::string moves;
+      for (const MouseMove& m : in.moves) {
+        if (!moves.empty()) moves += ", ";
+        moves += cat("{ frame = ", std::to_string(m.frame), ", position = ", vec(m.position), " }");
+      }
+      w.line("moves", "[" + moves + "]");
+    }
+  }
+}
+
+void write_look(Writer& w, const SceneLook& look) {
+  const SceneLook plain{};
+  const bool trails = look.trails != plain.trails;
+  const bool trail_alpha = !same(look.trail_alpha, plain.trail_alpha);
+  const bool body_gray = !same(look.body_gray, plain.body_gray);
+  const bool body_alpha = !same(look.body_alpha, plain.body_alpha);
+  const bool squares = look.squares != plain.squares;
+  if (trails || trail_alpha || body_gray || body_alpha || squares) {
+    w.header("[look]");
+    if (trails) w.line("trails", boolean(look.trails));
+    if (trail_alpha) w.line("trail_alpha", num(look.trail_alpha));
+    if (body_gray) w.line("body_gray", num(look.body_gray));
+    if (body_alpha) w.line("body_alpha", num(look.body_alpha));
+    if (squares) w.line("squares", boolean(look.squares));
+  }
 }
 
 }  // namespace
@@ -293,16 +322,7 @@ std::string to_toml(const Scene& scene) {
       cat("to_toml: scene ", scene.name.empty() ? std::string_view("(unnamed)") : scene.name);
   for (std::size_t k = 0; k < scene.fields.size(); ++k) {
     const Field& f = scene.fields[k].field;
-    const std::string field = cat(where, ": fields[", std::to_string(k), "] (", field_name(f), ")");
-    if (std::holds_alternative<CustomForce>(f)) {
-      throw Error(field + ": a custom force is C++ code, which a scene file can't hold");
-    }
-    const AttractionLaw* l = nullptr;
-    if (const auto* a = std::get_if<Attractor>(&f)) l = &a->law;
-    if (const auto* m = std::get_if<MutualAttraction>(&f)) l = &m->law;
-    if (l != nullptr && l->custom) {
-      throw Error(field + ": a custom attraction law is C++ code, which a scene file can't hold");
-    }
+    require_writable(f, cat(where, ": fields[", std::to_string(k), "] (", field_name(f), ")"));
   }
   scene.validate();
 
@@ -336,45 +356,8 @@ std::string to_toml(const Scene& scene) {
   for (const BodyGroup& g : scene.bodies) write_body_group(w, g);
   for (const SceneField& f : scene.fields) write_field(w, f);
 
-  // [input] and [look] list only what differs from the defaults.
-  const InputScript& in = scene.input;
-  const bool mouse_moved = !same(in.mouse.x, 0.0) || !same(in.mouse.y, 0.0);
-  if (!in.mouse_pressed.empty() || mouse_moved || !in.moves.empty()) {
-    w.header("[input]");
-    if (!in.mouse_pressed.empty()) {
-      std::string ranges;
-      for (const FrameRange& r : in.mouse_pressed) {
-        if (!ranges.empty()) ranges += ", ";
-        ranges += cat("[", std::to_string(r.first), ", ", std::to_string(r.last), "]");
-      }
-      w.line("mouse_pressed", "[" + ranges + "]");
-    }
-    if (mouse_moved) w.line("mouse", vec(in.mouse));
-    if (!in.moves.empty()) {
-      std::string moves;
-      for (const MouseMove& m : in.moves) {
-        if (!moves.empty()) moves += ", ";
-        moves += cat("{ frame = ", std::to_string(m.frame), ", position = ", vec(m.position), " }");
-      }
-      w.line("moves", "[" + moves + "]");
-    }
-  }
-
-  const SceneLook& look = scene.look;
-  const SceneLook plain{};
-  const bool trails = look.trails != plain.trails;
-  const bool trail_alpha = !same(look.trail_alpha, plain.trail_alpha);
-  const bool body_gray = !same(look.body_gray, plain.body_gray);
-  const bool body_alpha = !same(look.body_alpha, plain.body_alpha);
-  const bool squares = look.squares != plain.squares;
-  if (trails || trail_alpha || body_gray || body_alpha || squares) {
-    w.header("[look]");
-    if (trails) w.line("trails", boolean(look.trails));
-    if (trail_alpha) w.line("trail_alpha", num(look.trail_alpha));
-    if (body_gray) w.line("body_gray", num(look.body_gray));
-    if (body_alpha) w.line("body_alpha", num(look.body_alpha));
-    if (squares) w.line("squares", boolean(look.squares));
-  }
+  write_input(w, scene.input);
+  write_look(w, scene.look);
   return w.take();
 }
 
