@@ -19,6 +19,7 @@
 #include <span>
 #include <variant>
 
+#include "calder/body_columns.hpp"
 #include "calder/forces.hpp"
 #include "calder/vec2.hpp"
 
@@ -48,9 +49,8 @@ enum class Edge { left, right, top, bottom };
 
 // Read-only view of the bodies' state that forces are evaluated at. During a
 // multi-stage integrator step the positions and velocities are the stage's.
-struct BodyView {
-  std::span<const double> x, y, vx, vy, mass, radius, friction, drag_area;
-
+// (The columns are calder/body_columns.hpp's.)
+struct BodyView : BodyColumnsOf<std::span<const double>> {
   [[nodiscard]] std::size_t size() const { return x.size(); }
   [[nodiscard]] Vec2 position(std::size_t i) const { return {x[i], y[i]}; }
   [[nodiscard]] Vec2 velocity(std::size_t i) const { return {vx[i], vy[i]}; }

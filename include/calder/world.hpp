@@ -22,6 +22,7 @@
 #include <string>
 #include <vector>
 
+#include "calder/body_columns.hpp"
 #include "calder/fields.hpp"
 #include "calder/random.hpp"
 #include "calder/vec2.hpp"
@@ -123,8 +124,7 @@ struct WorldDef {
 // Everything a whole-world batch of steps reads and writes (World::step hands
 // it to the backend that calder::movers::install() registers).
 struct StepBatch {
-  std::span<double> x, y, vx, vy, ax, ay;
-  std::span<const double> mass, radius, friction, drag_area;
+  BodyColumnsOf<std::span<double>, std::span<const double>> bodies;
   const std::deque<Field>* fields = nullptr;
   Boundary boundary{};
   double width = 640.0;
@@ -135,8 +135,8 @@ struct StepBatch {
   Arithmetic arithmetic = Arithmetic::book;
   int threads = 0;
   const Noise* noise = nullptr;
-  // Before advancing them, the backend copies x, y, vx, vy, ax, ay into
-  // saved (6 n doubles: all x, then all y, ...), so that the world can undo
+  // Before advancing them, the backend copies the state columns into saved
+  // (kStateColumns n doubles: all x, then all y, ...), so that the world can undo
   // the batch; afterwards it sets *first_non_finite to the lowest index of a
   // body whose position or velocity is not finite (n if none). Done tile by
   // tile in the backend's threads, not serially by the world.
@@ -166,10 +166,8 @@ struct BodyDef {
 
 // Bodies as arrays, for World::add_bodies: each column holds one value per
 // body, or one value for all, or none (BodyDef's default; friction NaN:
-// none of its own).
-struct BodyColumns {
-  std::span<const double> x{}, y{}, vx{}, vy{}, mass{}, radius{}, friction{}, drag_area{};
-};
+// none of its own). The accelerations (ax, ay) start at 0: not an input.
+using BodyColumns = BodyColumnsOf<std::span<const double>>;
 
 struct BodyId {
   std::uint32_t index = UINT32_MAX;
@@ -190,7 +188,7 @@ class World {
   // grow once. Returns the first's id.
   BodyId add_bodies(const BodyColumns& columns);
   Mover mover(BodyId id);
-  [[nodiscard]] std::size_t body_count() const { return x_.size(); }
+  [[nodiscard]] std::size_t body_count() const { return bodies_.x.size(); }
   [[nodiscard]] BodyId body(std::size_t index) const;  // the id of the index-th body
   void clear_bodies();
 
@@ -301,7 +299,7 @@ class World {
 
   WorldDef def_;
   // Structure of arrays: body i is index i of each.
-  std::vector<double> x_, y_, vx_, vy_, ax_, ay_, mass_, radius_, friction_, drag_area_;
+  BodyColumnsOf<std::vector<double>> bodies_;
   std::deque<Field> fields_;
   Random random_;
   Noise noise_;

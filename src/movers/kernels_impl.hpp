@@ -69,13 +69,19 @@ struct Simd<float> {
   using M = decltype(V{} < V{});
 };
 
-// The tile's bodies in R, padded to whole vectors (lanes past the tile get a
-// harmless body: unit mass at the origin, at rest), 64-byte aligned.
+// Room for a tile padded to whole vectors, each column a whole number of
+// 64-byte lines (so that every column of a 64-byte aligned Chunk is aligned).
 template <class R>
-struct Chunk {
-  static constexpr std::size_t kSize = kTile + kVectorBytes / sizeof(R);
-  alignas(64) R x[kSize], y[kSize], vx[kSize], vy[kSize], ax[kSize], ay[kSize];
-  alignas(64) R m[kSize], inv_m[kSize], r[kSize], area[kSize], mu[kSize];
+inline constexpr std::size_t kChunkSize = kTile + 64 / sizeof(R);
+static_assert(kChunkSize<float> * sizeof(float) % 64 == 0 &&
+              kChunkSize<double> * sizeof(double) % 64 == 0 && 64 >= kVectorBytes);
+
+// The tile's bodies in R, padded to whole vectors (lanes past the tile
+// repeat its first body, a valid one, and are never stored back), with
+// 1 / mass beside them, 64-byte aligned.
+template <class R>
+struct alignas(64) Chunk : BodyColumnsOf<R[kChunkSize<R>]> {
+  R inv_m[kChunkSize<R>];
 };
 
 // One vector of a chunk's bodies: the state a step changes, in registers; the
@@ -93,11 +99,11 @@ struct Block {
     __builtin_memcpy(&v, from, sizeof v);
     return v;
   }
-  [[gnu::always_inline]] V m() const { return load(chunk->m + at); }
+  [[gnu::always_inline]] V m() const { return load(chunk->mass + at); }
   [[gnu::always_inline]] V inv_m() const { return load(chunk->inv_m + at); }
-  [[gnu::always_inline]] V r() const { return load(chunk->r + at); }
-  [[gnu::always_inline]] V area() const { return load(chunk->area + at); }
-  [[gnu::always_inline]] V mu() const { return load(chunk->mu + at); }
+  [[gnu::always_inline]] V r() const { return load(chunk->radius + at); }
+  [[gnu::always_inline]] V area() const { return load(chunk->drag_area + at); }
+  [[gnu::always_inline]] V mu() const { return load(chunk->friction + at); }
 };
 
 // Vector v of a chunk; its accelerations from the chunk (the tile's) or +0.
@@ -692,31 +698,22 @@ void advance_tile(const Plan& plan, const Tile& tile) {
   Chunk<R> chunk;  // on the stack: a thread_local's address costs a call per access here
   constexpr auto lanes = static_cast<std::size_t>(Block<R>::kLanes);
   const std::size_t vectors = (tile.n + lanes - 1) / lanes;
-  for (std::size_t i = 0; i < vectors * lanes; ++i) {
-    const bool real = i < tile.n;
-    const std::size_t k = real ? i : 0;
-    chunk.x[i] = real ? R(tile.x[k]) : R(0);
-    chunk.y[i] = real ? R(tile.y[k]) : R(0);
-    chunk.vx[i] = real ? R(tile.vx[k]) : R(0);
-    chunk.vy[i] = real ? R(tile.vy[k]) : R(0);
-    chunk.ax[i] = real ? R(tile.ax[k]) : R(0);
-    chunk.ay[i] = real ? R(tile.ay[k]) : R(0);
-    chunk.m[i] = real ? R(tile.mass[k]) : R(1);
-    chunk.inv_m[i] = real ? R(1.0 / tile.mass[k]) : R(1);
-    chunk.r[i] = real ? R(tile.radius[k]) : R(0);
-    chunk.area[i] = real ? R(tile.drag_area[k]) : R(1);
-    chunk.mu[i] = real ? R(tile.friction[k]) : R(0);
-  }
+  const std::size_t padded = vectors * lanes;
+  for_each_column(
+      [&](const char*, R* to, const double* from) {
+        for (std::size_t i = 0; i < tile.n; ++i) to[i] = R(from[i]);
+        std::fill(to + tile.n, to + padded, R(from[0]));
+      },
+      chunk, tile.bodies);
+  const double* mass = tile.bodies.mass;
+  for (std::size_t i = 0; i < padded; ++i) chunk.inv_m[i] = R(1.0 / mass[i < tile.n ? i : 0]);
   thread_local std::vector<std::size_t> passes;
   advance_chunk<R, kBook>(plan, params, chunk, vectors, passes);
-  for (std::size_t i = 0; i < tile.n; ++i) {
-    tile.x[i] = chunk.x[i];
-    tile.y[i] = chunk.y[i];
-    tile.vx[i] = chunk.vx[i];
-    tile.vy[i] = chunk.vy[i];
-    tile.ax[i] = 0.0;  // the update clears the accelerations
-    tile.ay[i] = 0.0;
-  }
+  // The last pass keeps the accelerations in registers: cleared by the update.
+  std::fill_n(chunk.ax, tile.n, R(0));
+  std::fill_n(chunk.ay, tile.n, R(0));
+  for_each_state([&](const char*, const R* from, double* to) { std::copy_n(from, tile.n, to); },
+                 chunk, tile.bodies);
 }
 
 inline void advance_book64(const Plan& plan, const Tile& tile) {

@@ -69,19 +69,10 @@ bool compile(const StepBatch& batch, Plan& plan, std::string* why_not);
 // The reason a world's fields can't be compiled, or "".
 std::string unsupported_field(const std::deque<Field>& fields);
 
-// One tile: slices of the world's arrays.
+// One tile: slices of the world's columns (kTile bodies at most).
 struct Tile {
-  double* x;
-  double* y;
-  double* vx;
-  double* vy;
-  double* ax;
-  double* ay;
-  const double* mass;
-  const double* radius;
-  const double* friction;  // NaN: the Friction field's mu
-  const double* drag_area;
-  std::size_t n;  // <= kTile
+  BodyColumnsOf<double*, const double*> bodies;
+  std::size_t n;
 };
 
 // Advances one tile through plan.steps steps.
