@@ -201,8 +201,7 @@ void validate(const Field& field) {
               throw Error(where_s + ": threads must be >= 0 (got " + std::to_string(f.threads) +
                           ")");
             }
-            if (f.method != NBodyMethod::exact &&
-                (f.law.custom || f.law.exponent != 2.0 || f.law.repulsion != 0.0)) {
+            if (f.method != NBodyMethod::exact && !f.law.inverse_square()) {
               throw Error(where_s +
                           ": the fast methods support the inverse-square law only (the book "
                           "clamp, the squared clamp or Plummer softening)");

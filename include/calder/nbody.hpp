@@ -62,7 +62,9 @@ enum class Precision {
   float64,
 };
 
-enum class Law { plummer, clamp_distance, clamp_squared_distance };
+// The laws are the core's (calder/forces.hpp), by their kernel names:
+// Law::plummer, Law::clamp_distance, Law::clamp_squared_distance.
+using Law = DistanceClamp;
 
 struct Options {
   double G = 1.0;

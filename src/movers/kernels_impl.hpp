@@ -186,7 +186,7 @@ struct Params {
       margin, reach;
   bool never_reverse, masses_first;
   Edge surface;
-  AttractorLaw law;
+  DistanceClamp law;
 
   explicit Params(const Op& op)
       : fx(R(op.fx)),
@@ -340,7 +340,7 @@ template <class R, bool kBook, bool kNeverReverse>
 
 // A fixed attractor at (px, py) of mass M: calder::attraction(source =
 // attractor, target = body) for the inverse-square laws.
-template <class R, bool kBook, AttractorLaw kLaw, bool kSoftened>
+template <class R, bool kBook, DistanceClamp kLaw, bool kSoftened>
 [[gnu::always_inline]] inline void op_attractor(Block<R>& b, const Params<R>& p) {
   using V = typename Simd<R>::V;
   using M = typename Simd<R>::M;
@@ -355,11 +355,11 @@ template <class R, bool kBook, AttractorLaw kLaw, bool kSoftened>
       const V numerator = p.masses_first ? p.G * (p.mass * m) : p.G * p.mass * m;
       V strength;
       M apply = ~M{};
-      if constexpr (kLaw == AttractorLaw::clamp_distance) {
+      if constexpr (kLaw == DistanceClamp::distance) {
         V dc = d < p.hi ? d : splat<V>(p.hi);  // constrain(d, lo, hi) = max(min(d, hi), lo)
         dc = dc > p.lo ? dc : splat<V>(p.lo);
         strength = numerator / (dc * dc);
-      } else if constexpr (kLaw == AttractorLaw::clamp_squared) {
+      } else if constexpr (kLaw == DistanceClamp::squared_distance) {
         V q = d_sq < p.hi ? d_sq : splat<V>(p.hi);
         q = q > p.lo ? q : splat<V>(p.lo);
         strength = numerator / q;
@@ -378,11 +378,11 @@ template <class R, bool kBook, AttractorLaw kLaw, bool kSoftened>
     } else {
       // acceleration = G M w r, with w = 1 / (d_c^2 d) (clamped) or 1 / s^3 (Plummer).
       V denominator;
-      if constexpr (kLaw == AttractorLaw::clamp_distance) {
+      if constexpr (kLaw == DistanceClamp::distance) {
         V dc = d < p.hi ? d : splat<V>(p.hi);
         dc = dc > p.lo ? dc : splat<V>(p.lo);
         denominator = dc * dc * d;
-      } else if constexpr (kLaw == AttractorLaw::clamp_squared) {
+      } else if constexpr (kLaw == DistanceClamp::squared_distance) {
         V q = d_sq < p.hi ? d_sq : splat<V>(p.hi);
         q = q > p.lo ? q : splat<V>(p.lo);
         denominator = q * d;
@@ -566,21 +566,21 @@ template <class R, bool kBook, class Each>
       });
     case OpKind::attractor:
       switch (p.law) {
-        case AttractorLaw::clamp_distance:
+        case DistanceClamp::distance:
           return each([=](Block<R>& b) CALDER_MOVERS_INLINE {
-            op_attractor<R, kBook, AttractorLaw::clamp_distance, false>(b, p);
+            op_attractor<R, kBook, DistanceClamp::distance, false>(b, p);
           });
-        case AttractorLaw::clamp_squared:
+        case DistanceClamp::squared_distance:
           return each([=](Block<R>& b) CALDER_MOVERS_INLINE {
-            op_attractor<R, kBook, AttractorLaw::clamp_squared, false>(b, p);
+            op_attractor<R, kBook, DistanceClamp::squared_distance, false>(b, p);
           });
-        case AttractorLaw::plummer:
+        case DistanceClamp::none:
           if (p.eps == R(0))
             return each([=](Block<R>& b) CALDER_MOVERS_INLINE {
-              op_attractor<R, kBook, AttractorLaw::plummer, false>(b, p);
+              op_attractor<R, kBook, DistanceClamp::none, false>(b, p);
             });
           return each([=](Block<R>& b) CALDER_MOVERS_INLINE {
-            op_attractor<R, kBook, AttractorLaw::plummer, true>(b, p);
+            op_attractor<R, kBook, DistanceClamp::none, true>(b, p);
           });
       }
       return;

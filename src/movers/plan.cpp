@@ -22,8 +22,7 @@ std::string why_not_field(const Field& field) {
   }
   if (std::holds_alternative<CustomForce>(field)) return "field custom_force has no kernel";
   if (const auto* a = std::get_if<Attractor>(&field)) {
-    const AttractionLaw& law = a->law;
-    if (law.custom || law.exponent != 2.0 || law.repulsion != 0.0) {
+    if (!a->law.inverse_square()) {
       return "field attractor: only the inverse-square laws have a kernel (no custom law, "
              "exponent 2, no repulsive core)";
     }
@@ -129,17 +128,7 @@ bool compile(const StepBatch& batch, Plan& plan, std::string* why_not) {
             op.mass = f.mass;
             op.G = f.law.G;
             op.masses_first = f.law.product == MassProduct::masses_first;
-            switch (f.law.clamp) {
-              case DistanceClamp::distance:
-                op.law = AttractorLaw::clamp_distance;
-                break;
-              case DistanceClamp::squared_distance:
-                op.law = AttractorLaw::clamp_squared;
-                break;
-              case DistanceClamp::none:
-                op.law = AttractorLaw::plummer;
-                break;
-            }
+            op.law = f.law.clamp;
             op.lo = f.law.min;
             op.hi = f.law.max;
             op.softening = f.law.softening;

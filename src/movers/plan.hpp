@@ -26,8 +26,6 @@ enum class OpKind : std::uint8_t {
   lift,            // perpendicular to the velocity
 };
 
-enum class AttractorLaw : std::uint8_t { clamp_distance, clamp_squared, plummer };
-
 // One pass over a tile. Fields not used by a kind keep their defaults.
 struct Op {
   OpKind kind = OpKind::uniform;
@@ -46,7 +44,7 @@ struct Op {
   double tolerance = 1.0;       // friction
   double px = 0.0, py = 0.0;    // attractor, fan: position
   // attractor: law, G * M and G, M (the book's two groupings), clamp bounds, softening
-  AttractorLaw law = AttractorLaw::clamp_distance;
+  DistanceClamp law = DistanceClamp::distance;
   bool masses_first = false;
   double G = 1.0, mass = 0.0, lo = 0.0, hi = 0.0, softening = 0.0;
   double margin = 0.0;  // edge_force

@@ -1,13 +1,36 @@
 // SPDX-License-Identifier: MIT
-// calder::nbody::install(): the fast methods of MutualAttraction
+// calder::nbody and the World: the kernels' options for a core attraction
+// law (options_for), and install(), the fast methods of MutualAttraction
 // (NBodyMethod::direct, NBodyMethod::barnes_hut) through the core's hook
 // (calder/fields.hpp, set_mutual_attraction_backend).
 #include <span>
 
+#include "calder/error.hpp"
 #include "calder/fields.hpp"
 #include "calder/nbody.hpp"
 
 namespace calder::nbody {
+
+Options options_for(const AttractionLaw& law) {
+  if (law.custom) {
+    throw Error("nbody::options_for: a custom force law has no n-body kernel");
+  }
+  if (!law.inverse_square()) {
+    throw Error(
+        "nbody::options_for: the n-body kernels support the inverse-square law only (got "
+        "exponent " +
+        calder::detail::format_number(law.exponent) + ", repulsion " +
+        calder::detail::format_number(law.repulsion) + ")");
+  }
+  law.validate("nbody::options_for");
+  Options o;
+  o.G = law.G;
+  o.law = law.clamp;  // the same enum (nbody::Law)
+  o.softening = law.softening;
+  o.min_distance = law.min;
+  o.max_distance = law.max;
+  return o;
+}
 
 namespace {
 
