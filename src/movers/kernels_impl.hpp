@@ -179,41 +179,6 @@ template <class V, class R>
   return V{} + value;
 }
 
-// Op's parameters in the kernel's precision.
-template <class R>
-struct Params {
-  R fx, fy, c, normal, x_min, x_max, y_min, y_max, tolerance, px, py, gm, G, mass, lo, hi, eps,
-      margin, reach;
-  bool never_reverse, masses_first;
-  Edge surface;
-  DistanceClamp law;
-
-  explicit Params(const Op& op)
-      : fx(R(op.fx)),
-        fy(R(op.fy)),
-        c(R(op.c)),
-        normal(R(op.normal)),
-        x_min(R(op.x_min)),
-        x_max(R(op.x_max)),
-        y_min(R(op.y_min)),
-        y_max(R(op.y_max)),
-        tolerance(R(op.tolerance)),
-        px(R(op.px)),
-        py(R(op.py)),
-        gm(R(op.G * op.mass)),
-        G(R(op.G)),
-        mass(R(op.mass)),
-        lo(R(op.lo)),
-        hi(R(op.hi)),
-        eps(R(op.softening)),
-        margin(R(op.margin)),
-        reach(R(op.reach)),
-        never_reverse(op.never_reverse),
-        masses_first(op.masses_first),
-        surface(op.surface),
-        law(op.law) {}
-};
-
 // acceleration += force / mass (book) or force * (1 / mass) (fast), in the
 // lanes where apply is set.
 template <class R, bool kBook, class V, class M>
@@ -545,13 +510,13 @@ template <class R, bool kBook, class Each>
                       CALDER_MOVERS_INLINE { op_gravity_scaled<R, kBook>(b, p.fx, p.fy); });
     case OpKind::drag:
       if (p.never_reverse) {
-        if (op.everywhere)
+        if (p.everywhere)
           return each([=](Block<R>& b)
                           CALDER_MOVERS_INLINE { op_drag<R, kBook, true, true>(b, p, dt); });
         return each([=](Block<R>& b)
                         CALDER_MOVERS_INLINE { op_drag<R, kBook, true, false>(b, p, dt); });
       }
-      if (op.everywhere)
+      if (p.everywhere)
         return each([=](Block<R>& b)
                         CALDER_MOVERS_INLINE { op_drag<R, kBook, false, true>(b, p, dt); });
       return each([=](Block<R>& b)
@@ -617,8 +582,8 @@ template <class R, bool kBook>
 // the update together would store least, but then every vector goes through
 // the ops' dispatch: slower on AVX2, measured.)
 template <class R, bool kBook>
-void advance_chunk(const Plan& plan, const std::vector<Params<R>>& params, Chunk<R>& chunk,
-                   std::size_t vectors, std::vector<std::size_t>& passes) {
+void advance_chunk(const Plan& plan, Chunk<R>& chunk, std::size_t vectors,
+                   std::vector<std::size_t>& passes) {
   using V = typename Simd<R>::V;
   const R width = R(plan.width);
   const R height = R(plan.height);
@@ -632,7 +597,7 @@ void advance_chunk(const Plan& plan, const std::vector<Params<R>>& params, Chunk
     passes.clear();
     for (std::size_t k = 0; k < plan.ops.size(); ++k) {
       R gx, gy;
-      if (constant_op<R, kBook>(plan.ops[k], params[k], gx, gy)) {
+      if (constant_op<R, kBook>(plan.ops[k], plan.ops[k].template params<R>(), gx, gy)) {
         cx += gx;
         cy += gy;
       } else {
@@ -660,7 +625,8 @@ void advance_chunk(const Plan& plan, const std::vector<Params<R>>& params, Chunk
           __builtin_memcpy(chunk.ay + b.at, &b.ay, sizeof(V));
         }
       };
-      apply_op<R, kBook>(each, plan.ops[k], params[k], step, width, height, dt);
+      apply_op<R, kBook>(each, plan.ops[k], plan.ops[k].template params<R>(), step, width, height,
+                         dt);
     }
     // The last pass: the last op, the update, the boundary.
     const bool alone = passes.size() <= 1;
@@ -678,7 +644,8 @@ void advance_chunk(const Plan& plan, const std::vector<Params<R>>& params, Chunk
       };
       if (passes.empty()) return each([](Block<R>&) CALDER_MOVERS_INLINE {});
       const std::size_t k = passes.back();
-      apply_op<R, kBook>(each, plan.ops[k], params[k], step, width, height, dt);
+      apply_op<R, kBook>(each, plan.ops[k], plan.ops[k].template params<R>(), step, width, height,
+                         dt);
     };
     if (boundary.kind == BoundaryKind::bounce && boundary.use_radius) {
       last([=](Block<R>& b) CALDER_MOVERS_INLINE { update_bounce<R, true>(b, walls, dt); });
@@ -691,10 +658,6 @@ void advance_chunk(const Plan& plan, const std::vector<Params<R>>& params, Chunk
 template <class R, bool kBook>
 void advance_tile(const Plan& plan, const Tile& tile) {
   if (plan.steps <= 0 || tile.n == 0) return;
-  // The ops' parameters, converted once per tile.
-  thread_local std::vector<Params<R>> params;
-  params.clear();
-  for (const Op& op : plan.ops) params.emplace_back(op);
   Chunk<R> chunk;  // on the stack: a thread_local's address costs a call per access here
   constexpr auto lanes = static_cast<std::size_t>(Block<R>::kLanes);
   const std::size_t vectors = (tile.n + lanes - 1) / lanes;
@@ -708,7 +671,7 @@ void advance_tile(const Plan& plan, const Tile& tile) {
   const double* mass = tile.bodies.mass;
   for (std::size_t i = 0; i < padded; ++i) chunk.inv_m[i] = R(1.0 / mass[i < tile.n ? i : 0]);
   thread_local std::vector<std::size_t> passes;
-  advance_chunk<R, kBook>(plan, params, chunk, vectors, passes);
+  advance_chunk<R, kBook>(plan, chunk, vectors, passes);
   // The last pass keeps the accelerations in registers: cleared by the update.
   std::fill_n(chunk.ax, tile.n, R(0));
   std::fill_n(chunk.ay, tile.n, R(0));
