@@ -404,18 +404,6 @@ std::atomic<StepBatchBackend> batch_backend{nullptr};
 // Below this many body-steps a call is not worth a batch's setup.
 constexpr std::int64_t kBatchMinBodySteps = 4096;
 
-const char* arithmetic_name(Arithmetic a) {
-  switch (a) {
-    case Arithmetic::book:
-      return "book";
-    case Arithmetic::float64:
-      return "float64";
-    case Arithmetic::float32:
-      return "float32";
-  }
-  return "?";
-}
-
 }  // namespace
 
 void set_step_batch_backend(StepBatchBackend backend) { batch_backend = backend; }
@@ -499,14 +487,15 @@ void World::step(int count) {
   const bool book = def_.arithmetic == Arithmetic::book;
   const std::string plain_only = needs_plain_loops();
   if (!book && !plain_only.empty()) {
-    throw Error(std::string("World::step: arithmetic ") + arithmetic_name(def_.arithmetic) +
-                " has no kernel for " + plain_only);
+    throw Error(std::string("World::step: arithmetic ") +
+                std::string(arithmetic_name(def_.arithmetic)) + " has no kernel for " + plain_only);
   }
   const bool batchable = def_.integrator == Integrator::semi_implicit_euler &&
                          def_.update_order == UpdateOrder::simultaneous &&
                          batch_backend.load() != nullptr && plain_only.empty();
   if (!book && !batchable) {
-    throw Error(std::string("World::step: arithmetic ") + arithmetic_name(def_.arithmetic) +
+    throw Error(std::string("World::step: arithmetic ") +
+                std::string(arithmetic_name(def_.arithmetic)) +
                 (batch_backend.load() == nullptr
                      ? " needs calder::movers (link calder::movers and call "
                        "calder::movers::install())"
@@ -553,7 +542,8 @@ bool World::step_batch(int steps) {
   const bool ran = backend(batch, &why_not);
   if (!ran) {
     if (book) return false;
-    throw Error(std::string("World::step: arithmetic ") + arithmetic_name(def_.arithmetic) +
+    throw Error(std::string("World::step: arithmetic ") +
+                std::string(arithmetic_name(def_.arithmetic)) +
                 " needs a kernel for every field: " + why_not);
   }
   if (first_non_finite < n) {
@@ -571,7 +561,7 @@ bool World::step_batch(int steps) {
     throw Error("World::step: body " + std::to_string(i) +
                 " got a non-finite position or velocity within steps " +
                 std::to_string(step_count_ + 1) + " to " + std::to_string(step_count_ + steps) +
-                " (arithmetic " + arithmetic_name(def_.arithmetic) +
+                " (arithmetic " + std::string(arithmetic_name(def_.arithmetic)) +
                 "); the world is left as it was after step " + std::to_string(step_count_));
   }
   for (int k = 0; k < steps; ++k) time_ += def_.dt;

@@ -151,18 +151,6 @@ std::string show(double v) {
   return ::testing::AssertionSuccess();
 }
 
-const char* arithmetic_name(Arithmetic a) {
-  switch (a) {
-    case Arithmetic::book:
-      return "book";
-    case Arithmetic::float64:
-      return "float64";
-    case Arithmetic::float32:
-      return "float32";
-  }
-  return "?";
-}
-
 // --- 1. book arithmetic: the plain loops' bits, field by field ---------------
 
 // Where the attractors and fans of the cases sit; bodies 0 and 1 start there, at rest.

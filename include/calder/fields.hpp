@@ -190,10 +190,6 @@ struct CentralBody {
   double mass = 500.0;
 };
 
-// Every body attracts every other (the n-body problem). In a world updated
-// simultaneously all forces come from one state (see PairOrder). In a world
-// updated sequentially (example 2.9), body i feels all others at their current
-// positions, including the ones already moved this step.
 // How mutual attraction is summed.
 enum class NBodyMethod {
   // The core's loops in the order PairOrder sets: bit-faithful to the book's
@@ -206,6 +202,10 @@ enum class NBodyMethod {
   barnes_hut,
 };
 
+// Every body attracts every other (the n-body problem). In a world updated
+// simultaneously all forces come from one state (see PairOrder). In a world
+// updated sequentially (example 2.9), body i feels all others at their current
+// positions, including the ones already moved this step.
 struct MutualAttraction {
   AttractionLaw law{};
   PairOrder order = PairOrder::pairwise;

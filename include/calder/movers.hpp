@@ -17,11 +17,14 @@
 // squared clamp, Plummer), with the bounce, wrap or no boundary. A world with
 // mutual attraction or a custom force steps body by body as before.
 //
-// How: the bodies are cut into tiles of kTile; one thread advances a tile
-// through a whole batch of steps (World::kBatchSteps) while it sits in the
-// L1 cache, one pass per field per step over the tile's arrays (the last
-// fused with the update), each pass a loop over vectors of bodies (AVX-512,
-// AVX2 + FMA or SSE2, as calder::nbody's kernels). Bodies don't interact,
+// How: the fields are compiled once per batch into a list of ops (plan.cpp:
+// one op per enabled field). The bodies are cut into tiles of kTile; one
+// thread copies a tile's columns into an L1-resident chunk (in the batch's
+// precision) and advances it through the whole batch of steps
+// (World::kBatchSteps): each step is one pass over the chunk per op, the
+// last op's pass fused with the update and the boundary, each pass a loop
+// over vectors of bodies (AVX-512, AVX2 + FMA or SSE2, as calder::nbody's
+// kernels; details in src/movers/kernels_impl.hpp). Bodies don't interact,
 // so no order between tiles matters: results are bit-identical for any
 // number of threads, and there is no broad phase to pay for.
 //

@@ -14,12 +14,14 @@
 // or a world steps all bodies under its fields with one call, world.step().
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <deque>
 #include <optional>
 #include <span>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "calder/body_columns.hpp"
@@ -100,6 +102,25 @@ enum class Arithmetic {
   // with millions of bodies.
   float32,
 };
+
+// Every arithmetic by its name ("book", "float64", "float32"): the one list
+// that scene files, the command line and messages use.
+struct ArithmeticName {
+  std::string_view name;
+  Arithmetic value;
+};
+inline constexpr std::array<ArithmeticName, 3> kArithmeticNames{{
+    {"book", Arithmetic::book},
+    {"float64", Arithmetic::float64},
+    {"float32", Arithmetic::float32},
+}};
+// Its name in kArithmeticNames.
+[[nodiscard]] constexpr std::string_view arithmetic_name(Arithmetic arithmetic) {
+  for (const ArithmeticName& a : kArithmeticNames) {
+    if (a.value == arithmetic) return a.name;
+  }
+  return "?";
+}
 
 struct WorldDef {
   double width = 640.0;
