@@ -64,8 +64,6 @@ void accumulate_each(const FieldContext& c, std::size_t first, std::size_t last,
   for (std::size_t i = first; i < last; ++i) add_force(ax, ay, i, force_of(i), c.bodies.mass[i]);
 }
 
-std::atomic<MutualAttractionBackend> mutual_backend{nullptr};
-
 void accumulate_mutual(const MutualAttraction& f, const FieldContext& c, std::size_t first,
                        std::size_t last, std::span<double> ax, std::span<double> ay) {
   const BodyView& b = c.bodies;
@@ -80,11 +78,13 @@ void accumulate_mutual(const MutualAttraction& f, const FieldContext& c, std::si
     if (first != 0 || last != n) {
       throw Error("field mutual_attraction: the fast methods need the simultaneous update order");
     }
-    const MutualAttractionBackend backend = mutual_backend.load();
+    const MutualAttractionBackend backend =
+        Backends{.mutual_attraction = c.mutual_attraction}.or_defaults().mutual_attraction;
     if (backend == nullptr) {
       throw Error(
           "field mutual_attraction: method direct and barnes_hut need calder::nbody (link "
-          "calder::nbody and call calder::nbody::install())");
+          "calder::nbody and set WorldDef::backends.mutual_attraction = "
+          "calder::nbody::mutual_attraction, or call calder::nbody::install())");
     }
     for (std::size_t i = 0; i < n; ++i) central_pulls(i);
     backend(f, c, ax, ay);
@@ -128,8 +128,6 @@ void accumulate_mutual(const MutualAttraction& f, const FieldContext& c, std::si
 }
 
 }  // namespace
-
-void set_mutual_attraction_backend(MutualAttractionBackend backend) { mutual_backend = backend; }
 
 const char* field_name(const Field& field) {
   return std::visit(Overloaded{

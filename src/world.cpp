@@ -11,6 +11,7 @@
 #include <utility>
 
 #include "calder/error.hpp"
+#include "calder/step_batch.hpp"
 #include "integrate.hpp"
 
 namespace calder {
@@ -358,6 +359,7 @@ FieldContext World::context(const BodyView& view, double time) const {
   c.width = def_.width;
   c.height = def_.height;
   c.noise = &noise_;
+  c.mutual_attraction = def_.backends.mutual_attraction;
   return c;
 }
 
@@ -399,14 +401,25 @@ Field& World::field(std::size_t index) {
 
 namespace {
 
-std::atomic<StepBatchBackend> batch_backend{nullptr};
+// The process defaults (calder/backends.hpp).
+std::atomic<StepBatchBackend> default_step_batch{nullptr};
+std::atomic<MutualAttractionBackend> default_mutual_attraction{nullptr};
 
 // Below this many body-steps a call is not worth a batch's setup.
 constexpr std::int64_t kBatchMinBodySteps = 4096;
 
 }  // namespace
 
-void set_step_batch_backend(StepBatchBackend backend) { batch_backend = backend; }
+void set_step_batch_backend(StepBatchBackend backend) { default_step_batch = backend; }
+void set_mutual_attraction_backend(MutualAttractionBackend backend) {
+  default_mutual_attraction = backend;
+}
+
+Backends Backends::or_defaults() const {
+  return {.step_batch = step_batch != nullptr ? step_batch : default_step_batch.load(),
+          .mutual_attraction =
+              mutual_attraction != nullptr ? mutual_attraction : default_mutual_attraction.load()};
+}
 
 void World::set_threads(int threads) {
   if (threads < 0) {
@@ -490,14 +503,16 @@ void World::step(int count) {
     throw Error(std::string("World::step: arithmetic ") +
                 std::string(arithmetic_name(def_.arithmetic)) + " has no kernel for " + plain_only);
   }
+  const StepBatchBackend backend = def_.backends.or_defaults().step_batch;
   const bool batchable = def_.integrator == Integrator::semi_implicit_euler &&
-                         def_.update_order == UpdateOrder::simultaneous &&
-                         batch_backend.load() != nullptr && plain_only.empty();
+                         def_.update_order == UpdateOrder::simultaneous && backend != nullptr &&
+                         plain_only.empty();
   if (!book && !batchable) {
     throw Error(std::string("World::step: arithmetic ") +
                 std::string(arithmetic_name(def_.arithmetic)) +
-                (batch_backend.load() == nullptr
-                     ? " needs calder::movers (link calder::movers and call "
+                (backend == nullptr
+                     ? " needs calder::movers (link calder::movers and set WorldDef::backends."
+                       "step_batch = calder::movers::step_batch, or call "
                        "calder::movers::install())"
                      : " needs the semi_implicit_euler integrator and the simultaneous update "
                        "order"));
@@ -516,7 +531,7 @@ void World::step(int count) {
 }
 
 bool World::step_batch(int steps) {
-  const StepBatchBackend backend = batch_backend.load();
+  const StepBatchBackend backend = def_.backends.or_defaults().step_batch;
   StepBatch batch;
   for_each_column([](const char*, auto& to, std::vector<double>& from) { to = from; }, batch.bodies,
                   bodies_);

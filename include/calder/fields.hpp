@@ -19,6 +19,7 @@
 #include <span>
 #include <variant>
 
+#include "calder/backends.hpp"
 #include "calder/body_columns.hpp"
 #include "calder/forces.hpp"
 #include "calder/vec2.hpp"
@@ -66,6 +67,9 @@ struct FieldContext {
   double width = 640.0;
   double height = 240.0;
   const Noise* noise = nullptr;
+  // The world's fast methods of MutualAttraction (calder/backends.hpp; null:
+  // the process default).
+  MutualAttractionBackend mutual_attraction = nullptr;
 };
 
 // --- made-up forces ---
@@ -216,14 +220,6 @@ struct MutualAttraction {
   int threads = 0;                // direct, barnes_hut: 0 = every core
   bool enabled = true;
 };
-
-// The fast methods (NBodyMethod::direct, barnes_hut) live in calder::nbody,
-// which needs OpenMP; the core stays dependency-free. calder::nbody::install()
-// registers them here; a step that asks for them without it throws
-// calder::Error. The backend adds the pair accelerations of all bodies.
-using MutualAttractionBackend = void (*)(const MutualAttraction& field, const FieldContext& context,
-                                         std::span<double> ax, std::span<double> ay);
-void set_mutual_attraction_backend(MutualAttractionBackend backend);
 
 // Any force of the user's: called once per body, returns the force on body i.
 using CustomForceFunction =

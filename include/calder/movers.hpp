@@ -3,11 +3,13 @@
 // thousands to millions of movers that don't interact (rain, particles,
 // crowds under wind and drag).
 //
-// After calder::movers::install(), World::step(count) hands large worlds to
-// these kernels instead of stepping body by body through the fields:
+// A world whose WorldDef::backends.step_batch is calder::movers::step_batch
+// (or any world, after calder::movers::install()) hands its large steps,
+// World::step(count), to these kernels instead of stepping body by body
+// through the fields:
 //
-//   calder::movers::install();            // once, at start-up
-//   calder::World world({.arithmetic = calder::Arithmetic::book, .threads = 0});
+//   calder::World world({.arithmetic = calder::Arithmetic::book, .threads = 0,
+//                        .backends = {.step_batch = calder::movers::step_batch}});
 //   ... add 100000 bodies, Gravity, Drag, a bounce boundary ...
 //   world.step(1000);                     // vectorised, threaded, cache-blocked
 //
@@ -49,8 +51,12 @@ namespace calder::movers {
 // Bodies per tile (one thread, one cache-resident block).
 inline constexpr std::size_t kTile = 256;
 
-// Registers the kernels with the core (calder::set_step_batch_backend).
-// Idempotent.
+// The kernels as a StepBatchBackend (calder/backends.hpp), for
+// WorldDef::backends.step_batch.
+bool step_batch(const StepBatch& batch, std::string* why_not);
+
+// Makes them the process default of worlds that name none
+// (calder::set_step_batch_backend). Idempotent.
 void install();
 
 // Whether the kernels can step this world: "" when they can, otherwise why

@@ -24,6 +24,7 @@
 #include <string_view>
 #include <vector>
 
+#include "calder/backends.hpp"
 #include "calder/body_columns.hpp"
 #include "calder/fields.hpp"
 #include "calder/random.hpp"
@@ -130,7 +131,7 @@ struct WorldDef {
   UpdateOrder update_order = UpdateOrder::simultaneous;
   Boundary boundary{};
   std::uint32_t seed = 0;  // seeds the world's random() and noise()
-  // float64 and float32 need calder::movers::install() and a world it has
+  // float64 and float32 need calder::movers' kernels (backends) and a world it has
   // kernels for (semi-implicit Euler, simultaneous, no custom force or
   // mutual attraction); World::step throws calder::Error otherwise.
   Arithmetic arithmetic = Arithmetic::book;
@@ -140,36 +141,11 @@ struct WorldDef {
   // The book's topSpeed: > 0 limits each body's speed after v += a dt, as
   // p5's vel.limit(topSpeed) (semi_implicit_euler, book arithmetic); 0, none.
   double max_speed = 0.0;
+  // The whole-world kernels of this world (calder/backends.hpp); null: the
+  // process defaults that calder::movers::install() and
+  // calder::nbody::install() set.
+  Backends backends{};
 };
-
-// Everything a whole-world batch of steps reads and writes (World::step hands
-// it to the backend that calder::movers::install() registers).
-struct StepBatch {
-  BodyColumnsOf<std::span<double>, std::span<const double>> bodies;
-  const std::deque<Field>* fields = nullptr;
-  Boundary boundary{};
-  double width = 640.0;
-  double height = 240.0;
-  double dt = 1.0;
-  double time = 0.0;  // of the first step; each next one adds dt
-  int steps = 1;
-  Arithmetic arithmetic = Arithmetic::book;
-  int threads = 0;
-  const Noise* noise = nullptr;
-  // Before advancing them, the backend copies the state columns into saved
-  // (kStateColumns n doubles: all x, then all y, ...), so that the world can undo
-  // the batch; afterwards it sets *first_non_finite to the lowest index of a
-  // body whose position or velocity is not finite (n if none). Done tile by
-  // tile in the backend's threads, not serially by the world.
-  double* saved = nullptr;
-  std::size_t* first_non_finite = nullptr;
-};
-// Runs batch.steps simultaneous semi-implicit Euler steps and returns true,
-// or returns false, changing nothing, when it has no kernel for one of the
-// fields (then *why_not, if given, names it). It may throw only before it
-// changes anything.
-using StepBatchBackend = bool (*)(const StepBatch& batch, std::string* why_not);
-void set_step_batch_backend(StepBatchBackend backend);
 
 struct BodyDef {
   Vec2 position{};

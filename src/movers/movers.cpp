@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "calder/step_batch.hpp"
 #include "plan.hpp"
 
 #if defined(_OPENMP)
@@ -24,7 +25,9 @@ namespace {
 // microseconds, comparable to waking a thread.
 constexpr std::size_t kMinBodiesPerThread = 2 * kTile;
 
-bool run_batch(const StepBatch& batch, std::string* why_not) {
+}  // namespace
+
+bool step_batch(const StepBatch& batch, std::string* why_not) {
   // One plan per calling thread keeps its storage from batch to batch.
   // (A reference: inside the parallel loop, the name of a thread_local would
   // mean each worker thread's own, empty, plan.)
@@ -89,9 +92,7 @@ bool run_batch(const StepBatch& batch, std::string* why_not) {
   return true;
 }
 
-}  // namespace
-
-void install() { set_step_batch_backend(run_batch); }
+void install() { set_step_batch_backend(step_batch); }
 
 std::string unsupported(const World& world) {
   if (world.integrator() != Integrator::semi_implicit_euler) {

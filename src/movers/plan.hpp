@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "calder/fields.hpp"
+#include "calder/step_batch.hpp"
 #include "calder/world.hpp"
 
 namespace calder::movers::detail {

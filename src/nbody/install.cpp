@@ -32,8 +32,6 @@ Options options_for(const AttractionLaw& law) {
   return o;
 }
 
-namespace {
-
 // The core has added the central body's pulls; this adds the pairs'.
 void mutual_attraction(const MutualAttraction& field, const FieldContext& context,
                        std::span<double> ax, std::span<double> ay) {
@@ -52,8 +50,6 @@ void mutual_attraction(const MutualAttraction& field, const FieldContext& contex
     direct_accelerations(b.x, b.y, b.mass, ax, ay, options);
   }
 }
-
-}  // namespace
 
 void install() { set_mutual_attraction_backend(mutual_attraction); }
 
