@@ -49,6 +49,73 @@ Stage carve(std::vector<double>& scratch, std::size_t n, std::size_t slot) {
           {base + 3 * n, n}, {base + 4 * n, n}, {base + 5 * n, n}};
 }
 
+// Kick-drift-kick, from the accelerations at the current state (in s).
+// Velocity-dependent forces at the end of the step see the predicted
+// velocity v + a dt.
+template <class Evaluate>
+void velocity_verlet(BodyColumnsOf<std::vector<double>>& b, const Stage& s, double time, double dt,
+                     const Evaluate& evaluate) {
+  const std::size_t n = b.x.size();
+  const double half = 0.5 * dt;
+  for (std::size_t i = 0; i < n; ++i) {
+    b.vx[i] += s.ax[i] * half;
+    b.vy[i] += s.ay[i] * half;
+    b.x[i] += b.vx[i] * dt;
+    b.y[i] += b.vy[i] * dt;
+    s.x[i] = b.x[i];
+    s.y[i] = b.y[i];
+    s.vx[i] = b.vx[i] + s.ax[i] * half;
+    s.vy[i] = b.vy[i] + s.ay[i] * half;
+  }
+  evaluate(time + dt);
+  for (std::size_t i = 0; i < n; ++i) {
+    b.vx[i] += s.ax[i] * half;
+    b.vy[i] += s.ay[i] * half;
+  }
+}
+
+// Classic RK4 on (x, v): k1 at t (the accelerations in s), k2 and k3 at
+// t + dt/2, k4 at t + dt, weights 1, 2, 2, 1 over 6.
+template <class Evaluate>
+void rk4(BodyColumnsOf<std::vector<double>>& b, const Stage& s, const Stage& sum, double time,
+         double dt, const Evaluate& evaluate) {
+  const std::size_t n = b.x.size();
+  const double half = 0.5 * dt;
+  for (std::size_t i = 0; i < n; ++i) {  // k1: velocity v, acceleration s.a
+    sum.x[i] = b.vx[i];
+    sum.y[i] = b.vy[i];
+    sum.vx[i] = s.ax[i];
+    sum.vy[i] = s.ay[i];
+  }
+  const double stage_dt[3] = {half, half, dt};
+  const double weight[3] = {2.0, 2.0, 1.0};
+  for (int k = 0; k < 3; ++k) {
+    // The next stage's state from the previous stage's derivatives (s.v, s.a).
+    for (std::size_t i = 0; i < n; ++i) {
+      const double vx = s.vx[i];
+      const double vy = s.vy[i];
+      s.x[i] = b.x[i] + vx * stage_dt[k];
+      s.y[i] = b.y[i] + vy * stage_dt[k];
+      s.vx[i] = b.vx[i] + s.ax[i] * stage_dt[k];
+      s.vy[i] = b.vy[i] + s.ay[i] * stage_dt[k];
+    }
+    evaluate(time + stage_dt[k]);
+    for (std::size_t i = 0; i < n; ++i) {
+      sum.x[i] += weight[k] * s.vx[i];
+      sum.y[i] += weight[k] * s.vy[i];
+      sum.vx[i] += weight[k] * s.ax[i];
+      sum.vy[i] += weight[k] * s.ay[i];
+    }
+  }
+  const double sixth = dt / 6.0;
+  for (std::size_t i = 0; i < n; ++i) {
+    b.x[i] += sum.x[i] * sixth;
+    b.y[i] += sum.y[i] * sixth;
+    b.vx[i] += sum.vx[i] * sixth;
+    b.vy[i] += sum.vy[i] * sixth;
+  }
+}
+
 }  // namespace
 
 void World::step_multistage() {
@@ -83,66 +150,12 @@ void World::step_multistage() {
     std::copy(bodies_.vy.begin(), bodies_.vy.end(), s.vy.begin());
   };
 
+  load_current();
+  evaluate(time_);
   if (def_.integrator == Integrator::velocity_verlet) {
-    // Kick-drift-kick. Velocity-dependent forces at the end of the step see
-    // the predicted velocity v + a dt.
-    const double half = 0.5 * dt;
-    load_current();
-    evaluate(time_);
-    for (std::size_t i = 0; i < n; ++i) {
-      bodies_.vx[i] += s.ax[i] * half;
-      bodies_.vy[i] += s.ay[i] * half;
-      bodies_.x[i] += bodies_.vx[i] * dt;
-      bodies_.y[i] += bodies_.vy[i] * dt;
-      s.x[i] = bodies_.x[i];
-      s.y[i] = bodies_.y[i];
-      s.vx[i] = bodies_.vx[i] + s.ax[i] * half;
-      s.vy[i] = bodies_.vy[i] + s.ay[i] * half;
-    }
-    evaluate(time_ + dt);
-    for (std::size_t i = 0; i < n; ++i) {
-      bodies_.vx[i] += s.ax[i] * half;
-      bodies_.vy[i] += s.ay[i] * half;
-    }
+    velocity_verlet(bodies_, s, time_, dt, evaluate);
   } else {
-    // Classic RK4 on (x, v): k1 at t, k2 and k3 at t + dt/2, k4 at t + dt,
-    // weights 1, 2, 2, 1 over 6.
-    const double half = 0.5 * dt;
-    load_current();
-    evaluate(time_);  // k1: velocity v, acceleration s.a
-    for (std::size_t i = 0; i < n; ++i) {
-      sum.x[i] = bodies_.vx[i];
-      sum.y[i] = bodies_.vy[i];
-      sum.vx[i] = s.ax[i];
-      sum.vy[i] = s.ay[i];
-    }
-    const double stage_dt[3] = {half, half, dt};
-    const double weight[3] = {2.0, 2.0, 1.0};
-    for (int k = 0; k < 3; ++k) {
-      // The next stage's state from the previous stage's derivatives (s.v, s.a).
-      for (std::size_t i = 0; i < n; ++i) {
-        const double vx = s.vx[i];
-        const double vy = s.vy[i];
-        s.x[i] = bodies_.x[i] + vx * stage_dt[k];
-        s.y[i] = bodies_.y[i] + vy * stage_dt[k];
-        s.vx[i] = bodies_.vx[i] + s.ax[i] * stage_dt[k];
-        s.vy[i] = bodies_.vy[i] + s.ay[i] * stage_dt[k];
-      }
-      evaluate(time_ + stage_dt[k]);
-      for (std::size_t i = 0; i < n; ++i) {
-        sum.x[i] += weight[k] * s.vx[i];
-        sum.y[i] += weight[k] * s.vy[i];
-        sum.vx[i] += weight[k] * s.ax[i];
-        sum.vy[i] += weight[k] * s.ay[i];
-      }
-    }
-    const double sixth = dt / 6.0;
-    for (std::size_t i = 0; i < n; ++i) {
-      bodies_.x[i] += sum.x[i] * sixth;
-      bodies_.y[i] += sum.y[i] * sixth;
-      bodies_.vx[i] += sum.vx[i] * sixth;
-      bodies_.vy[i] += sum.vy[i] * sixth;
-    }
+    rk4(bodies_, s, sum, time_, dt, evaluate);
   }
   std::fill(bodies_.ax.begin(), bodies_.ax.end(), 0.0);
   std::fill(bodies_.ay.begin(), bodies_.ay.end(), 0.0);
