@@ -39,7 +39,6 @@ void BodyDef::validate(const char* where) const {
   detail::require_non_negative(radius, where, "radius");
   if (friction) detail::require_non_negative(*friction, where, "friction");
   detail::require_non_negative(drag_area, where, "drag_area");
-  detail::require_finite(charge, where, "charge");
 }
 
 void Boundary::validate(const char* where) const {
@@ -88,7 +87,6 @@ BodyColumnsOf<double> row_of(const BodyDef& def) {
           .radius = def.radius,
           .friction = def.friction ? *def.friction : kNoFriction,
           .drag_area = def.drag_area,
-          .charge = def.charge,
           .ax = 0.0,
           .ay = 0.0};
 }
@@ -99,8 +97,7 @@ BodyDef body_of(const BodyColumnsOf<double>& row) {
           .mass = row.mass,
           .radius = row.radius,
           .friction = std::isnan(row.friction) ? std::nullopt : std::optional<double>(row.friction),
-          .drag_area = row.drag_area,
-          .charge = row.charge};
+          .drag_area = row.drag_area};
 }
 
 // The value of body i in an add_bodies column: its own, the one for all, or the default.

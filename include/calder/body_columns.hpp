@@ -25,7 +25,6 @@ struct BodyColumnsOf {
   Property radius{};     // >= 0; 0: a point
   Property friction{};   // own friction coefficient; NaN: the Friction field's mu
   Property drag_area{};  // frontal area scaling drag (exercise 2.9)
-  Property charge{};     // a dummy quantity
   State ax{}, ay{};      // accumulated since the last update
 };
 
@@ -48,7 +47,6 @@ constexpr void for_each_property(F&& f, Columns&&... columns) {
   f("radius", columns.radius...);
   f("friction", columns.friction...);
   f("drag_area", columns.drag_area...);
-  f("charge", columns.charge...);
 }
 
 // Every column: the state ones, then the properties.

@@ -155,7 +155,6 @@ struct BodyDef {
   // Own friction coefficient (exercise 2.6); unset: the Friction field's mu.
   std::optional<double> friction = std::nullopt;
   double drag_area = 1.0;  // frontal area scaling drag (exercise 2.9)
-  double charge = 0.0;
 
   // Throws calder::Error naming `where` and the field unless add_body would
   // accept it (lets a caller check a batch before adding any of it).
