@@ -76,12 +76,21 @@ inline constexpr std::size_t kChunkSize = kTile + 64 / sizeof(R);
 static_assert(kChunkSize<float> * sizeof(float) % 64 == 0 &&
               kChunkSize<double> * sizeof(double) % 64 == 0 && 64 >= kVectorBytes);
 
+// One column of a chunk, left uninitialised on purpose (BodyColumnsOf's
+// `{}` would otherwise zero ~25 KB per tile and batch, measurable in the
+// float64 kernels): each tile's load writes every value the kernels read.
+template <class R>
+struct ChunkColumn {
+  R values[kChunkSize<R>];
+  ChunkColumn() {}  // NOLINT(modernize-use-equals-default): = default would zero it under {}
+};
+
 // The tile's bodies in R, padded to whole vectors (lanes past the tile
 // repeat its first body, a valid one, and are never stored back), with
 // 1 / mass beside them, 64-byte aligned.
 template <class R>
-struct alignas(64) Chunk : BodyColumnsOf<R[kChunkSize<R>]> {
-  R inv_m[kChunkSize<R>];
+struct alignas(64) Chunk : BodyColumnsOf<ChunkColumn<R>> {
+  ChunkColumn<R> inv_m;
 };
 
 // One vector of a chunk's bodies: the state a step changes, in registers; the
@@ -99,11 +108,11 @@ struct Block {
     __builtin_memcpy(&v, from, sizeof v);
     return v;
   }
-  [[gnu::always_inline]] V m() const { return load(chunk->mass + at); }
-  [[gnu::always_inline]] V inv_m() const { return load(chunk->inv_m + at); }
-  [[gnu::always_inline]] V r() const { return load(chunk->radius + at); }
-  [[gnu::always_inline]] V area() const { return load(chunk->drag_area + at); }
-  [[gnu::always_inline]] V mu() const { return load(chunk->friction + at); }
+  [[gnu::always_inline]] V m() const { return load(chunk->mass.values + at); }
+  [[gnu::always_inline]] V inv_m() const { return load(chunk->inv_m.values + at); }
+  [[gnu::always_inline]] V r() const { return load(chunk->radius.values + at); }
+  [[gnu::always_inline]] V area() const { return load(chunk->drag_area.values + at); }
+  [[gnu::always_inline]] V mu() const { return load(chunk->friction.values + at); }
 };
 
 // Vector v of a chunk; its accelerations from the chunk (the tile's) or +0.
@@ -113,12 +122,12 @@ template <class R>
   Block<R> b;
   b.chunk = &chunk;
   b.at = v * static_cast<std::size_t>(Block<R>::kLanes);
-  b.x = Block<R>::load(chunk.x + b.at);
-  b.y = Block<R>::load(chunk.y + b.at);
-  b.vx = Block<R>::load(chunk.vx + b.at);
-  b.vy = Block<R>::load(chunk.vy + b.at);
-  b.ax = accelerations ? Block<R>::load(chunk.ax + b.at) : typename Simd<R>::V{};
-  b.ay = accelerations ? Block<R>::load(chunk.ay + b.at) : typename Simd<R>::V{};
+  b.x = Block<R>::load(chunk.x.values + b.at);
+  b.y = Block<R>::load(chunk.y.values + b.at);
+  b.vx = Block<R>::load(chunk.vx.values + b.at);
+  b.vy = Block<R>::load(chunk.vy.values + b.at);
+  b.ax = accelerations ? Block<R>::load(chunk.ax.values + b.at) : typename Simd<R>::V{};
+  b.ay = accelerations ? Block<R>::load(chunk.ay.values + b.at) : typename Simd<R>::V{};
   return b;
 }
 
@@ -621,8 +630,8 @@ void advance_chunk(const Plan& plan, Chunk<R>& chunk, std::size_t vectors,
         for (std::size_t v = 0; v < vectors; ++v) {
           Block<R> b = q == 0 ? first_load(v) : load_block(chunk, v, true);
           force(b);
-          __builtin_memcpy(chunk.ax + b.at, &b.ax, sizeof(V));
-          __builtin_memcpy(chunk.ay + b.at, &b.ay, sizeof(V));
+          __builtin_memcpy(chunk.ax.values + b.at, &b.ax, sizeof(V));
+          __builtin_memcpy(chunk.ay.values + b.at, &b.ay, sizeof(V));
         }
       };
       apply_op<R, kBook>(each, plan.ops[k], plan.ops[k].template params<R>(), step, width, height,
@@ -636,10 +645,10 @@ void advance_chunk(const Plan& plan, Chunk<R>& chunk, std::size_t vectors,
           Block<R> b = alone ? first_load(v) : load_block(chunk, v, true);
           force(b);
           update_one(b);
-          __builtin_memcpy(chunk.x + b.at, &b.x, sizeof(V));
-          __builtin_memcpy(chunk.y + b.at, &b.y, sizeof(V));
-          __builtin_memcpy(chunk.vx + b.at, &b.vx, sizeof(V));
-          __builtin_memcpy(chunk.vy + b.at, &b.vy, sizeof(V));
+          __builtin_memcpy(chunk.x.values + b.at, &b.x, sizeof(V));
+          __builtin_memcpy(chunk.y.values + b.at, &b.y, sizeof(V));
+          __builtin_memcpy(chunk.vx.values + b.at, &b.vx, sizeof(V));
+          __builtin_memcpy(chunk.vy.values + b.at, &b.vy, sizeof(V));
         }
       };
       if (passes.empty()) return each([](Block<R>&) CALDER_MOVERS_INLINE {});
@@ -663,19 +672,21 @@ void advance_tile(const Plan& plan, const Tile& tile) {
   const std::size_t vectors = (tile.n + lanes - 1) / lanes;
   const std::size_t padded = vectors * lanes;
   for_each_column(
-      [&](const char*, R* to, const double* from) {
-        for (std::size_t i = 0; i < tile.n; ++i) to[i] = R(from[i]);
-        std::fill(to + tile.n, to + padded, R(from[0]));
+      [&](const char*, ChunkColumn<R>& to, const double* from) {
+        for (std::size_t i = 0; i < tile.n; ++i) to.values[i] = R(from[i]);
+        std::fill(to.values + tile.n, to.values + padded, R(from[0]));
       },
       chunk, tile.bodies);
   const double* mass = tile.bodies.mass;
-  for (std::size_t i = 0; i < padded; ++i) chunk.inv_m[i] = R(1.0 / mass[i < tile.n ? i : 0]);
+  for (std::size_t i = 0; i < padded; ++i)
+    chunk.inv_m.values[i] = R(1.0 / mass[i < tile.n ? i : 0]);
   thread_local std::vector<std::size_t> passes;
   advance_chunk<R, kBook>(plan, chunk, vectors, passes);
   // The last pass keeps the accelerations in registers: cleared by the update.
-  std::fill_n(chunk.ax, tile.n, R(0));
-  std::fill_n(chunk.ay, tile.n, R(0));
-  for_each_state([&](const char*, const R* from, double* to) { std::copy_n(from, tile.n, to); },
+  std::fill_n(chunk.ax.values, tile.n, R(0));
+  std::fill_n(chunk.ay.values, tile.n, R(0));
+  for_each_state([&](const char*, const ChunkColumn<R>& from,
+                     double* to) { std::copy_n(from.values, tile.n, to); },
                  chunk, tile.bodies);
 }
 
