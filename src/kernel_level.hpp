@@ -39,7 +39,6 @@ inline int kernel_level() {
 constexpr int required_level(std::string_view variant) {
   if (variant == "x86v4") return 3;
   if (variant == "x86v3") return 2;
-  if (variant == "x86v2") return 1;  // a dummy variant (issue 10's measure)
   return 1;
 }
 
