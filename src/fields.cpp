@@ -92,8 +92,6 @@ void accumulate_liquid(const Liquid& f, const FieldContext& c, std::size_t first
   }
 }
 
-std::atomic<MutualAttractionBackend> mutual_backend{nullptr};
-
 void accumulate_mutual(const MutualAttraction& f, const FieldContext& c, std::size_t first,
                        std::size_t last, std::span<double> ax, std::span<double> ay) {
   const BodyView& b = c.bodies;
@@ -108,11 +106,13 @@ void accumulate_mutual(const MutualAttraction& f, const FieldContext& c, std::si
     if (first != 0 || last != n) {
       throw Error("field mutual_attraction: the fast methods need the simultaneous update order");
     }
-    const MutualAttractionBackend backend = mutual_backend.load();
+    const MutualAttractionBackend backend =
+        Backends{.mutual_attraction = c.mutual_attraction}.or_defaults().mutual_attraction;
     if (backend == nullptr) {
       throw Error(
           "field mutual_attraction: method direct and barnes_hut need calder::nbody (link "
-          "calder::nbody and call calder::nbody::install())");
+          "calder::nbody and set WorldDef::backends.mutual_attraction = "
+          "calder::nbody::mutual_attraction, or call calder::nbody::install())");
     }
     for (std::size_t i = 0; i < n; ++i) central_pulls(i);
     backend(f, c, ax, ay);
@@ -156,8 +156,6 @@ void accumulate_mutual(const MutualAttraction& f, const FieldContext& c, std::si
 }
 
 }  // namespace
-
-void set_mutual_attraction_backend(MutualAttractionBackend backend) { mutual_backend = backend; }
 
 const char* field_name(const Field& field) {
   return std::visit([](const auto& f) { return FieldKind<std::decay_t<decltype(f)>>::name; },
@@ -220,8 +218,7 @@ void validate_value(T, Range, const std::string&, const char*) {}
 }  // namespace
 
 void FieldKind<MutualAttraction>::check(const MutualAttraction& f, const std::string& where) {
-  if (field_kind_detail::fast_method(f) &&
-      (f.law.custom || f.law.exponent != 2.0 || f.law.repulsion != 0.0)) {
+  if (field_kind_detail::fast_method(f) && !f.law.inverse_square()) {
     throw Error(where +
                 ": the fast methods support the inverse-square law only (the book "
                 "clamp, the squared clamp or Plummer softening)");

@@ -9,27 +9,29 @@
 namespace calder {
 
 void World::step_euler_simultaneous() {
-  const std::size_t n = x_.size();
+  const std::size_t n = bodies_.x.size();
   const double dt = def_.dt;
-  // ax_, ay_ already hold the forces applied since the last step.
-  accumulate_fields(context(bodies(), time_), 0, n, ax_, ay_);
+  // bodies_.ax, bodies_.ay already hold the forces applied since the last step.
+  accumulate_fields(context(bodies(), time_), 0, n, bodies_.ax, bodies_.ay);
   const bool before = def_.boundary.timing == BoundaryTiming::before_update;
   for (std::size_t i = 0; i < n; ++i) {
     if (before) boundary_one(i, def_.boundary);
-    detail::book_update(x_[i], y_[i], vx_[i], vy_[i], ax_[i], ay_[i], dt, def_.max_speed);
+    detail::book_update(bodies_.x[i], bodies_.y[i], bodies_.vx[i], bodies_.vy[i], bodies_.ax[i],
+                        bodies_.ay[i], dt, def_.max_speed);
     if (!before) boundary_one(i, def_.boundary);
   }
 }
 
 void World::step_euler_sequential() {
-  const std::size_t n = x_.size();
+  const std::size_t n = bodies_.x.size();
   const double dt = def_.dt;
   const bool before = def_.boundary.timing == BoundaryTiming::before_update;
   for (std::size_t i = 0; i < n; ++i) {
     // Forces on body i see the bodies before i already moved (example 2.9).
-    accumulate_fields(context(bodies(), time_), i, i + 1, ax_, ay_);
+    accumulate_fields(context(bodies(), time_), i, i + 1, bodies_.ax, bodies_.ay);
     if (before) boundary_one(i, def_.boundary);
-    detail::book_update(x_[i], y_[i], vx_[i], vy_[i], ax_[i], ay_[i], dt, def_.max_speed);
+    detail::book_update(bodies_.x[i], bodies_.y[i], bodies_.vx[i], bodies_.vy[i], bodies_.ax[i],
+                        bodies_.ay[i], dt, def_.max_speed);
     if (!before) boundary_one(i, def_.boundary);
   }
 }
@@ -47,10 +49,77 @@ Stage carve(std::vector<double>& scratch, std::size_t n, std::size_t slot) {
           {base + 3 * n, n}, {base + 4 * n, n}, {base + 5 * n, n}};
 }
 
+// Kick-drift-kick, from the accelerations at the current state (in s).
+// Velocity-dependent forces at the end of the step see the predicted
+// velocity v + a dt.
+template <class Evaluate>
+void velocity_verlet(BodyColumnsOf<std::vector<double>>& b, const Stage& s, double time, double dt,
+                     const Evaluate& evaluate) {
+  const std::size_t n = b.x.size();
+  const double half = 0.5 * dt;
+  for (std::size_t i = 0; i < n; ++i) {
+    b.vx[i] += s.ax[i] * half;
+    b.vy[i] += s.ay[i] * half;
+    b.x[i] += b.vx[i] * dt;
+    b.y[i] += b.vy[i] * dt;
+    s.x[i] = b.x[i];
+    s.y[i] = b.y[i];
+    s.vx[i] = b.vx[i] + s.ax[i] * half;
+    s.vy[i] = b.vy[i] + s.ay[i] * half;
+  }
+  evaluate(time + dt);
+  for (std::size_t i = 0; i < n; ++i) {
+    b.vx[i] += s.ax[i] * half;
+    b.vy[i] += s.ay[i] * half;
+  }
+}
+
+// Classic RK4 on (x, v): k1 at t (the accelerations in s), k2 and k3 at
+// t + dt/2, k4 at t + dt, weights 1, 2, 2, 1 over 6.
+template <class Evaluate>
+void rk4(BodyColumnsOf<std::vector<double>>& b, const Stage& s, const Stage& sum, double time,
+         double dt, const Evaluate& evaluate) {
+  const std::size_t n = b.x.size();
+  const double half = 0.5 * dt;
+  for (std::size_t i = 0; i < n; ++i) {  // k1: velocity v, acceleration s.a
+    sum.x[i] = b.vx[i];
+    sum.y[i] = b.vy[i];
+    sum.vx[i] = s.ax[i];
+    sum.vy[i] = s.ay[i];
+  }
+  const double stage_dt[3] = {half, half, dt};
+  const double weight[3] = {2.0, 2.0, 1.0};
+  for (int k = 0; k < 3; ++k) {
+    // The next stage's state from the previous stage's derivatives (s.v, s.a).
+    for (std::size_t i = 0; i < n; ++i) {
+      const double vx = s.vx[i];
+      const double vy = s.vy[i];
+      s.x[i] = b.x[i] + vx * stage_dt[k];
+      s.y[i] = b.y[i] + vy * stage_dt[k];
+      s.vx[i] = b.vx[i] + s.ax[i] * stage_dt[k];
+      s.vy[i] = b.vy[i] + s.ay[i] * stage_dt[k];
+    }
+    evaluate(time + stage_dt[k]);
+    for (std::size_t i = 0; i < n; ++i) {
+      sum.x[i] += weight[k] * s.vx[i];
+      sum.y[i] += weight[k] * s.vy[i];
+      sum.vx[i] += weight[k] * s.ax[i];
+      sum.vy[i] += weight[k] * s.ay[i];
+    }
+  }
+  const double sixth = dt / 6.0;
+  for (std::size_t i = 0; i < n; ++i) {
+    b.x[i] += sum.x[i] * sixth;
+    b.y[i] += sum.y[i] * sixth;
+    b.vx[i] += sum.vx[i] * sixth;
+    b.vy[i] += sum.vy[i] * sixth;
+  }
+}
+
 }  // namespace
 
 void World::step_multistage() {
-  const std::size_t n = x_.size();
+  const std::size_t n = bodies_.x.size();
   const double dt = def_.dt;
   const Boundary& boundary = def_.boundary;
   if (boundary.timing == BoundaryTiming::before_update) {
@@ -60,86 +129,36 @@ void World::step_multistage() {
   Stage s = carve(scratch_, n, 0);    // stage positions, velocities, accelerations
   Stage sum = carve(scratch_, n, 1);  // RK4: weighted sums of velocities (x, y) and accelerations
   Stage applied = carve(scratch_, n, 2);  // forces applied by the user, held for every stage
-  std::copy(ax_.begin(), ax_.end(), applied.ax.begin());
-  std::copy(ay_.begin(), ay_.end(), applied.ay.begin());
+  std::copy(bodies_.ax.begin(), bodies_.ax.end(), applied.ax.begin());
+  std::copy(bodies_.ay.begin(), bodies_.ay.end(), applied.ay.begin());
 
   // Acceleration at the stage state s (positions and velocities) and time t into s.ax, s.ay.
   const auto evaluate = [&](double t) {
     std::copy(applied.ax.begin(), applied.ax.end(), s.ax.begin());
     std::copy(applied.ay.begin(), applied.ay.end(), s.ay.begin());
-    const BodyView view{s.x, s.y, s.vx, s.vy, mass_, radius_, friction_, drag_area_};
+    BodyView view = bodies();  // the stage's positions and velocities, the bodies' properties
+    view.x = s.x;
+    view.y = s.y;
+    view.vx = s.vx;
+    view.vy = s.vy;
     accumulate_fields(context(view, t), 0, n, s.ax, s.ay);
   };
   const auto load_current = [&] {
-    std::copy(x_.begin(), x_.end(), s.x.begin());
-    std::copy(y_.begin(), y_.end(), s.y.begin());
-    std::copy(vx_.begin(), vx_.end(), s.vx.begin());
-    std::copy(vy_.begin(), vy_.end(), s.vy.begin());
+    std::copy(bodies_.x.begin(), bodies_.x.end(), s.x.begin());
+    std::copy(bodies_.y.begin(), bodies_.y.end(), s.y.begin());
+    std::copy(bodies_.vx.begin(), bodies_.vx.end(), s.vx.begin());
+    std::copy(bodies_.vy.begin(), bodies_.vy.end(), s.vy.begin());
   };
 
+  load_current();
+  evaluate(time_);
   if (def_.integrator == Integrator::velocity_verlet) {
-    // Kick-drift-kick. Velocity-dependent forces at the end of the step see
-    // the predicted velocity v + a dt.
-    const double half = 0.5 * dt;
-    load_current();
-    evaluate(time_);
-    for (std::size_t i = 0; i < n; ++i) {
-      vx_[i] += s.ax[i] * half;
-      vy_[i] += s.ay[i] * half;
-      x_[i] += vx_[i] * dt;
-      y_[i] += vy_[i] * dt;
-      s.x[i] = x_[i];
-      s.y[i] = y_[i];
-      s.vx[i] = vx_[i] + s.ax[i] * half;
-      s.vy[i] = vy_[i] + s.ay[i] * half;
-    }
-    evaluate(time_ + dt);
-    for (std::size_t i = 0; i < n; ++i) {
-      vx_[i] += s.ax[i] * half;
-      vy_[i] += s.ay[i] * half;
-    }
+    velocity_verlet(bodies_, s, time_, dt, evaluate);
   } else {
-    // Classic RK4 on (x, v): k1 at t, k2 and k3 at t + dt/2, k4 at t + dt,
-    // weights 1, 2, 2, 1 over 6.
-    const double half = 0.5 * dt;
-    load_current();
-    evaluate(time_);  // k1: velocity v, acceleration s.a
-    for (std::size_t i = 0; i < n; ++i) {
-      sum.x[i] = vx_[i];
-      sum.y[i] = vy_[i];
-      sum.vx[i] = s.ax[i];
-      sum.vy[i] = s.ay[i];
-    }
-    const double stage_dt[3] = {half, half, dt};
-    const double weight[3] = {2.0, 2.0, 1.0};
-    for (int k = 0; k < 3; ++k) {
-      // The next stage's state from the previous stage's derivatives (s.v, s.a).
-      for (std::size_t i = 0; i < n; ++i) {
-        const double vx = s.vx[i];
-        const double vy = s.vy[i];
-        s.x[i] = x_[i] + vx * stage_dt[k];
-        s.y[i] = y_[i] + vy * stage_dt[k];
-        s.vx[i] = vx_[i] + s.ax[i] * stage_dt[k];
-        s.vy[i] = vy_[i] + s.ay[i] * stage_dt[k];
-      }
-      evaluate(time_ + stage_dt[k]);
-      for (std::size_t i = 0; i < n; ++i) {
-        sum.x[i] += weight[k] * s.vx[i];
-        sum.y[i] += weight[k] * s.vy[i];
-        sum.vx[i] += weight[k] * s.ax[i];
-        sum.vy[i] += weight[k] * s.ay[i];
-      }
-    }
-    const double sixth = dt / 6.0;
-    for (std::size_t i = 0; i < n; ++i) {
-      x_[i] += sum.x[i] * sixth;
-      y_[i] += sum.y[i] * sixth;
-      vx_[i] += sum.vx[i] * sixth;
-      vy_[i] += sum.vy[i] * sixth;
-    }
+    rk4(bodies_, s, sum, time_, dt, evaluate);
   }
-  std::fill(ax_.begin(), ax_.end(), 0.0);
-  std::fill(ay_.begin(), ay_.end(), 0.0);
+  std::fill(bodies_.ax.begin(), bodies_.ax.end(), 0.0);
+  std::fill(bodies_.ay.begin(), bodies_.ay.end(), 0.0);
   if (boundary.timing == BoundaryTiming::after_update) {
     for (std::size_t i = 0; i < n; ++i) boundary_one(i, boundary);
   }

@@ -4,8 +4,11 @@
 // once by both libraries' dispatch.cpp in the same way.
 #pragma once
 
+#include <cstddef>
 #include <cstdlib>
 #include <cstring>
+#include <string_view>
+#include <utility>
 
 namespace calder::detail {
 
@@ -29,6 +32,27 @@ inline int kernel_level() {
   const int supported = 1;
 #endif
   return level < supported ? level : supported;
+}
+
+// The level a variant of CMakeLists.txt's calder_kernel_variants needs
+// ("native" and "baseline" run on the machine they were built for).
+constexpr int required_level(std::string_view variant) {
+  if (variant == "x86v4") return 3;
+  if (variant == "x86v3") return 2;
+  return 1;
+}
+
+// The variant to run among those compiled ({name, table} pairs, from
+// CALDER_KERNEL_VARIANTS): the one of the highest level this CPU allows.
+template <class Table, std::size_t N>
+Table best_variant(const std::pair<std::string_view, Table> (&compiled)[N]) {
+  const int level = kernel_level();
+  std::size_t best = 0;
+  for (std::size_t k = 0; k < N; ++k) {
+    const int need = required_level(compiled[k].first);
+    if (need <= level && need >= required_level(compiled[best].first)) best = k;
+  }
+  return compiled[best].second;
 }
 
 }  // namespace calder::detail

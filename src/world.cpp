@@ -11,6 +11,7 @@
 #include <utility>
 
 #include "calder/error.hpp"
+#include "calder/step_batch.hpp"
 #include "integrate.hpp"
 
 namespace calder {
@@ -58,97 +59,105 @@ World::World(const WorldDef& def) : def_(def), random_(def.seed), noise_(def.see
 }
 
 std::size_t World::checked(BodyId id, const char* where) const {
-  if (id.index >= x_.size()) {
+  if (id.index >= bodies_.x.size()) {
     throw Error(std::string(where) + ": no body with id " + std::to_string(id.index) +
-                world_has(x_.size(), "body", "bodies"));
+                world_has(bodies_.x.size(), "body", "bodies"));
   }
   return id.index;
 }
 
 BodyId World::add_body(const BodyDef& def) {
   def.validate("World::add_body");
-  if (x_.size() >= UINT32_MAX) throw Error("World::add_body: too many bodies");
-  const BodyId id{static_cast<std::uint32_t>(x_.size())};
+  if (bodies_.x.size() >= UINT32_MAX) throw Error("World::add_body: too many bodies");
+  const BodyId id{static_cast<std::uint32_t>(bodies_.x.size())};
   append(def);
   return id;
 }
 
+namespace {
+
+// A body as one value per column (accelerations 0), and back: the one place
+// that knows how BodyDef's fields map onto the columns.
+BodyColumnsOf<double> row_of(const BodyDef& def) {
+  return {.x = def.position.x,
+          .y = def.position.y,
+          .vx = def.velocity.x,
+          .vy = def.velocity.y,
+          .mass = def.mass,
+          .radius = def.radius,
+          .friction = def.friction ? *def.friction : kNoFriction,
+          .drag_area = def.drag_area,
+          .ax = 0.0,
+          .ay = 0.0};
+}
+
+BodyDef body_of(const BodyColumnsOf<double>& row) {
+  return {.position = {row.x, row.y},
+          .velocity = {row.vx, row.vy},
+          .mass = row.mass,
+          .radius = row.radius,
+          .friction = std::isnan(row.friction) ? std::nullopt : std::optional<double>(row.friction),
+          .drag_area = row.drag_area};
+}
+
+// The value of body i in an add_bodies column: its own, the one for all, or the default.
+double value_at(std::span<const double> column, std::size_t i, double fallback) {
+  return column.empty() ? fallback : column[column.size() == 1 ? 0 : i];
+}
+
+}  // namespace
+
 BodyId World::add_bodies(const BodyColumns& columns) {
-  const std::pair<const char*, std::span<const double>> named[] = {
-      {"x", columns.x},
-      {"y", columns.y},
-      {"vx", columns.vx},
-      {"vy", columns.vy},
-      {"mass", columns.mass},
-      {"radius", columns.radius},
-      {"friction", columns.friction},
-      {"drag_area", columns.drag_area}};
-  std::size_t n = 0;
-  for (const auto& [name, column] : named) n = std::max(n, column.size());
-  for (const auto& [name, column] : named) {
-    if (column.size() > 1 && column.size() != n) {
-      throw Error(std::string("World::add_bodies: ") + name + " has " +
-                  std::to_string(column.size()) + " values, expected " + std::to_string(n) +
-                  ", 1 or none");
-    }
+  if (!columns.ax.empty() || !columns.ay.empty()) {
+    throw Error("World::add_bodies: ax and ay are not inputs (accelerations start at 0)");
   }
-  const auto at = [](std::span<const double> column, std::size_t i, double fallback) {
-    return column.empty() ? fallback : column[column.size() == 1 ? 0 : i];
-  };
-  const BodyDef defaults{};
+  std::size_t n = 0;
+  for_each_column([&n](const char*, std::span<const double> c) { n = std::max(n, c.size()); },
+                  columns);
+  for_each_column(
+      [n](const char* name, std::span<const double> column) {
+        if (column.size() > 1 && column.size() != n) {
+          throw Error(std::string("World::add_bodies: ") + name + " has " +
+                      std::to_string(column.size()) + " values, expected " + std::to_string(n) +
+                      ", 1 or none");
+        }
+      },
+      columns);
+  const BodyColumnsOf<double> defaults = row_of(BodyDef{});
   for (std::size_t i = 0; i < n; ++i) {
-    const double mu = at(columns.friction, i, kNoFriction);
-    const BodyDef def{{at(columns.x, i, 0.0), at(columns.y, i, 0.0)},
-                      {at(columns.vx, i, 0.0), at(columns.vy, i, 0.0)},
-                      at(columns.mass, i, defaults.mass),
-                      at(columns.radius, i, defaults.radius),
-                      std::isnan(mu) ? std::nullopt : std::optional<double>(mu),
-                      at(columns.drag_area, i, defaults.drag_area)};
+    BodyColumnsOf<double> row{};
+    for_each_column([i](const char*, double& to, std::span<const double> column,
+                        double fallback) { to = value_at(column, i, fallback); },
+                    row, columns, defaults);
     try {
-      def.validate("World::add_body");
+      body_of(row).validate("World::add_body");
     } catch (const Error& e) {
       throw Error("World::add_bodies: body " + std::to_string(i) + ": " + e.what());
     }
   }
-  if (n > UINT32_MAX - x_.size()) throw Error("World::add_bodies: too many bodies");
-  const BodyId first{static_cast<std::uint32_t>(x_.size())};
-  const auto extend = [n](std::vector<double>& array, std::span<const double> column,
-                          double fallback) {
-    if (column.size() == n && n > 1) {
-      array.insert(array.end(), column.begin(), column.end());
-    } else {
-      array.insert(array.end(), n, column.empty() ? fallback : column[0]);
-    }
-  };
+  const std::size_t count = body_count();
+  if (n > UINT32_MAX - count) throw Error("World::add_bodies: too many bodies");
+  const BodyId first{static_cast<std::uint32_t>(count)};
   // Room once for the batch, still geometric so that many small batches stay linear.
-  const std::size_t room = std::max(x_.size() + n, 2 * x_.size());
-  for (auto* v : {&x_, &y_, &vx_, &vy_, &ax_, &ay_, &mass_, &radius_, &friction_, &drag_area_}) {
-    v->reserve(room);
-  }
-  extend(x_, columns.x, 0.0);
-  extend(y_, columns.y, 0.0);
-  extend(vx_, columns.vx, 0.0);
-  extend(vy_, columns.vy, 0.0);
-  extend(ax_, {}, 0.0);
-  extend(ay_, {}, 0.0);
-  extend(mass_, columns.mass, defaults.mass);
-  extend(radius_, columns.radius, defaults.radius);
-  extend(friction_, columns.friction, kNoFriction);
-  extend(drag_area_, columns.drag_area, defaults.drag_area);
+  const std::size_t room = std::max(count + n, 2 * count);
+  for_each_column(
+      [n, room](const char*, std::vector<double>& array, std::span<const double> column,
+                double fallback) {
+        array.reserve(room);
+        if (column.size() == n && n > 1) {
+          array.insert(array.end(), column.begin(), column.end());
+        } else {
+          array.insert(array.end(), n, column.empty() ? fallback : column[0]);
+        }
+      },
+      bodies_, columns, defaults);
   return first;
 }
 
 void World::append(const BodyDef& def) {
-  x_.push_back(def.position.x);
-  y_.push_back(def.position.y);
-  vx_.push_back(def.velocity.x);
-  vy_.push_back(def.velocity.y);
-  ax_.push_back(0.0);
-  ay_.push_back(0.0);
-  mass_.push_back(def.mass);
-  radius_.push_back(def.radius);
-  friction_.push_back(def.friction ? *def.friction : kNoFriction);
-  drag_area_.push_back(def.drag_area);
+  for_each_column(
+      [](const char*, std::vector<double>& array, double value) { array.push_back(value); },
+      bodies_, row_of(def));
 }
 
 Mover World::add_mover(const BodyDef& def) { return {*this, add_body(def)}; }
@@ -159,106 +168,106 @@ Mover World::mover(BodyId id) {
 }
 
 BodyId World::body(std::size_t index) const {
-  if (index >= x_.size()) {
+  if (index >= bodies_.x.size()) {
     throw Error("World::body: index " + std::to_string(index) + " out of range" +
-                world_has(x_.size(), "body", "bodies"));
+                world_has(bodies_.x.size(), "body", "bodies"));
   }
   return BodyId{static_cast<std::uint32_t>(index)};
 }
 
 void World::clear_bodies() {
-  for (auto* v : {&x_, &y_, &vx_, &vy_, &ax_, &ay_, &mass_, &radius_, &friction_, &drag_area_}) {
-    v->clear();
-  }
+  for_each_column([](const char*, std::vector<double>& array) { array.clear(); }, bodies_);
 }
 
 Vec2 World::position(BodyId id) const {
   const std::size_t i = checked(id, "World::position");
-  return {x_[i], y_[i]};
+  return {bodies_.x[i], bodies_.y[i]};
 }
 Vec2 World::velocity(BodyId id) const {
   const std::size_t i = checked(id, "World::velocity");
-  return {vx_[i], vy_[i]};
+  return {bodies_.vx[i], bodies_.vy[i]};
 }
 Vec2 World::acceleration(BodyId id) const {
   const std::size_t i = checked(id, "World::acceleration");
-  return {ax_[i], ay_[i]};
+  return {bodies_.ax[i], bodies_.ay[i]};
 }
-double World::mass(BodyId id) const { return mass_[checked(id, "World::mass")]; }
-double World::radius(BodyId id) const { return radius_[checked(id, "World::radius")]; }
+double World::mass(BodyId id) const { return bodies_.mass[checked(id, "World::mass")]; }
+double World::radius(BodyId id) const { return bodies_.radius[checked(id, "World::radius")]; }
 std::optional<double> World::friction(BodyId id) const {
-  const double f = friction_[checked(id, "World::friction")];
+  const double f = bodies_.friction[checked(id, "World::friction")];
   return std::isnan(f) ? std::nullopt : std::optional<double>(f);
 }
-double World::drag_area(BodyId id) const { return drag_area_[checked(id, "World::drag_area")]; }
+double World::drag_area(BodyId id) const {
+  return bodies_.drag_area[checked(id, "World::drag_area")];
+}
 
 void World::set_position(BodyId id, Vec2 position) {
   const std::size_t i = checked(id, "World::set_position");
   require_finite_vec(position, "World::set_position", "position");
-  x_[i] = position.x;
-  y_[i] = position.y;
+  bodies_.x[i] = position.x;
+  bodies_.y[i] = position.y;
 }
 void World::set_velocity(BodyId id, Vec2 velocity) {
   const std::size_t i = checked(id, "World::set_velocity");
   require_finite_vec(velocity, "World::set_velocity", "velocity");
-  vx_[i] = velocity.x;
-  vy_[i] = velocity.y;
+  bodies_.vx[i] = velocity.x;
+  bodies_.vy[i] = velocity.y;
 }
 void World::set_mass(BodyId id, double mass) {
   const std::size_t i = checked(id, "World::set_mass");
   detail::require_positive(mass, "World::set_mass", "mass");
-  mass_[i] = mass;
+  bodies_.mass[i] = mass;
 }
 void World::set_radius(BodyId id, double radius) {
   const std::size_t i = checked(id, "World::set_radius");
   detail::require_non_negative(radius, "World::set_radius", "radius");
-  radius_[i] = radius;
+  bodies_.radius[i] = radius;
 }
 void World::set_friction(BodyId id, std::optional<double> mu) {
   const std::size_t i = checked(id, "World::set_friction");
   if (mu) detail::require_non_negative(*mu, "World::set_friction", "friction");
-  friction_[i] = mu ? *mu : kNoFriction;
+  bodies_.friction[i] = mu ? *mu : kNoFriction;
 }
 void World::set_drag_area(BodyId id, double area) {
   const std::size_t i = checked(id, "World::set_drag_area");
   detail::require_non_negative(area, "World::set_drag_area", "drag_area");
-  drag_area_[i] = area;
+  bodies_.drag_area[i] = area;
 }
 
 void World::apply_force(BodyId id, Vec2 force) {
   const std::size_t i = checked(id, "World::apply_force");
   require_finite_vec(force, "World::apply_force", "force");
   // p5: acceleration.add(p5.Vector.div(force, mass)), one force at a time.
-  const double ax = ax_[i] + force.x / mass_[i];
-  const double ay = ay_[i] + force.y / mass_[i];
+  const double ax = bodies_.ax[i] + force.x / bodies_.mass[i];
+  const double ay = bodies_.ay[i] + force.y / bodies_.mass[i];
   if (!std::isfinite(ax) || !std::isfinite(ay)) {
     throw Error("World::apply_force: force (" + detail::format_number(force.x) + ", " +
                 detail::format_number(force.y) + ") on body " + std::to_string(i) + " of mass " +
-                detail::format_number(mass_[i]) + " gives a non-finite acceleration");
+                detail::format_number(bodies_.mass[i]) + " gives a non-finite acceleration");
   }
-  ax_[i] = ax;
-  ay_[i] = ay;
+  bodies_.ax[i] = ax;
+  bodies_.ay[i] = ay;
 }
 
 void World::update(BodyId id) {
   const std::size_t i = checked(id, "World::update");
-  double x = x_[i];
-  double y = y_[i];
-  double vx = vx_[i];
-  double vy = vy_[i];
-  double ax = ax_[i];
-  double ay = ay_[i];
+  double x = bodies_.x[i];
+  double y = bodies_.y[i];
+  double vx = bodies_.vx[i];
+  double vy = bodies_.vy[i];
+  double ax = bodies_.ax[i];
+  double ay = bodies_.ay[i];
   detail::book_update(x, y, vx, vy, ax, ay, def_.dt, def_.max_speed);
   if (!std::isfinite(x) || !std::isfinite(y) || !std::isfinite(vx) || !std::isfinite(vy)) {
     throw Error("World::update: body " + std::to_string(i) +
                 " would get a non-finite position or velocity (overflow); left unchanged");
   }
-  x_[i] = x;
-  y_[i] = y;
-  vx_[i] = vx;
-  vy_[i] = vy;
-  ax_[i] = ax;
-  ay_[i] = ay;
+  bodies_.x[i] = x;
+  bodies_.y[i] = y;
+  bodies_.vx[i] = vx;
+  bodies_.vy[i] = vy;
+  bodies_.ax[i] = ax;
+  bodies_.ay[i] = ay;
 }
 
 void World::apply_boundary(BodyId id) { apply_boundary(id, def_.boundary); }
@@ -270,7 +279,7 @@ void World::apply_boundary(BodyId id, const Boundary& boundary) {
 }
 
 void World::boundary_one(std::size_t i, const Boundary& b) {
-  const double r = b.use_radius ? radius_[i] : 0.0;
+  const double r = b.use_radius ? bodies_.radius[i] : 0.0;
   const double w = def_.width;
   const double h = def_.height;
   switch (b.kind) {
@@ -280,19 +289,19 @@ void World::boundary_one(std::size_t i, const Boundary& b) {
       // The book's order: right before left, bottom before top; clamp, then reverse.
       const double reverse = -b.restitution;
       const double near = r + b.inset;  // the walls, in from each side
-      if (b.edges.right && x_[i] > w - near) {
-        x_[i] = w - near;
-        vx_[i] *= reverse;
-      } else if (b.edges.left && x_[i] < near) {
-        x_[i] = near;
-        vx_[i] *= reverse;
+      if (b.edges.right && bodies_.x[i] > w - near) {
+        bodies_.x[i] = w - near;
+        bodies_.vx[i] *= reverse;
+      } else if (b.edges.left && bodies_.x[i] < near) {
+        bodies_.x[i] = near;
+        bodies_.vx[i] *= reverse;
       }
-      if (b.edges.bottom && y_[i] > h - near) {
-        y_[i] = h - near;
-        vy_[i] *= reverse;
-      } else if (b.edges.top && y_[i] < near) {
-        y_[i] = near;
-        vy_[i] *= reverse;
+      if (b.edges.bottom && bodies_.y[i] > h - near) {
+        bodies_.y[i] = h - near;
+        bodies_.vy[i] *= reverse;
+      } else if (b.edges.top && bodies_.y[i] < near) {
+        bodies_.y[i] = near;
+        bodies_.vy[i] *= reverse;
       }
       return;
     }
@@ -305,12 +314,14 @@ void World::boundary_one(std::size_t i, const Boundary& b) {
           if (v < lo) v = hi;
         };
         // 0 - r: +0 rather than -0 when r is 0, as the sketch's x = 0.
-        if (b.edges.left || b.edges.right) to_other_side(x_[i], 0.0 - r, w + r);
-        if (b.edges.top || b.edges.bottom) to_other_side(y_[i], 0.0 - r, h + r);
+        if (b.edges.left || b.edges.right) to_other_side(bodies_.x[i], 0.0 - r, w + r);
+        if (b.edges.top || b.edges.bottom) to_other_side(bodies_.y[i], 0.0 - r, h + r);
         return;
       }
-      if (b.edges.left || b.edges.right) x_[i] = detail::wrap_coordinate(x_[i], -r, w + r);
-      if (b.edges.top || b.edges.bottom) y_[i] = detail::wrap_coordinate(y_[i], -r, h + r);
+      if (b.edges.left || b.edges.right)
+        bodies_.x[i] = detail::wrap_coordinate(bodies_.x[i], -r, w + r);
+      if (b.edges.top || b.edges.bottom)
+        bodies_.y[i] = detail::wrap_coordinate(bodies_.y[i], -r, h + r);
       return;
   }
 }
@@ -318,7 +329,8 @@ void World::boundary_one(std::size_t i, const Boundary& b) {
 bool World::touching(BodyId id, Edge edge, double tolerance) const {
   const std::size_t i = checked(id, "World::touching");
   detail::require_finite(tolerance, "World::touching", "tolerance");
-  return touches_edge(edge, {x_[i], y_[i]}, radius_[i], def_.width, def_.height, tolerance);
+  return touches_edge(edge, {bodies_.x[i], bodies_.y[i]}, bodies_.radius[i], def_.width,
+                      def_.height, tolerance);
 }
 
 void World::set_dt(double dt) {
@@ -331,7 +343,13 @@ void World::set_boundary(const Boundary& boundary) {
   def_.boundary = boundary;
 }
 
-BodyView World::bodies() const { return {x_, y_, vx_, vy_, mass_, radius_, friction_, drag_area_}; }
+BodyView World::bodies() const {
+  BodyView view;
+  for_each_column(
+      [](const char*, std::span<const double>& to, const std::vector<double>& from) { to = from; },
+      view, bodies_);
+  return view;
+}
 
 FieldContext World::context(const BodyView& view, double time) const {
   FieldContext c;
@@ -341,6 +359,7 @@ FieldContext World::context(const BodyView& view, double time) const {
   c.width = def_.width;
   c.height = def_.height;
   c.noise = &noise_;
+  c.mutual_attraction = def_.backends.mutual_attraction;
   return c;
 }
 
@@ -350,14 +369,15 @@ void World::accumulate_fields(const FieldContext& context, std::size_t first, st
 }
 
 void World::check_finite(const char* where) const {
-  for (std::size_t i = 0; i < x_.size(); ++i) {
-    if (!std::isfinite(x_[i]) || !std::isfinite(y_[i]) || !std::isfinite(vx_[i]) ||
-        !std::isfinite(vy_[i])) {
+  for (std::size_t i = 0; i < bodies_.x.size(); ++i) {
+    if (!std::isfinite(bodies_.x[i]) || !std::isfinite(bodies_.y[i]) ||
+        !std::isfinite(bodies_.vx[i]) || !std::isfinite(bodies_.vy[i])) {
       throw Error(std::string(where) + ": body " + std::to_string(i) +
                   " has a non-finite position or velocity after step " +
-                  std::to_string(step_count_ + 1) + " (x " + detail::format_number(x_[i]) + ", y " +
-                  detail::format_number(y_[i]) + ", vx " + detail::format_number(vx_[i]) + ", vy " +
-                  detail::format_number(vy_[i]) + ")");
+                  std::to_string(step_count_ + 1) + " (x " + detail::format_number(bodies_.x[i]) +
+                  ", y " + detail::format_number(bodies_.y[i]) + ", vx " +
+                  detail::format_number(bodies_.vx[i]) + ", vy " +
+                  detail::format_number(bodies_.vy[i]) + ")");
     }
   }
 }
@@ -381,26 +401,25 @@ Field& World::field(std::size_t index) {
 
 namespace {
 
-std::atomic<StepBatchBackend> batch_backend{nullptr};
+// The process defaults (calder/backends.hpp).
+std::atomic<StepBatchBackend> default_step_batch{nullptr};
+std::atomic<MutualAttractionBackend> default_mutual_attraction{nullptr};
 
 // Below this many body-steps a call is not worth a batch's setup.
 constexpr std::int64_t kBatchMinBodySteps = 4096;
 
-const char* arithmetic_name(Arithmetic a) {
-  switch (a) {
-    case Arithmetic::book:
-      return "book";
-    case Arithmetic::float64:
-      return "float64";
-    case Arithmetic::float32:
-      return "float32";
-  }
-  return "?";
-}
-
 }  // namespace
 
-void set_step_batch_backend(StepBatchBackend backend) { batch_backend = backend; }
+void set_step_batch_backend(StepBatchBackend backend) { default_step_batch = backend; }
+void set_mutual_attraction_backend(MutualAttractionBackend backend) {
+  default_mutual_attraction = backend;
+}
+
+Backends Backends::or_defaults() const {
+  return {.step_batch = step_batch != nullptr ? step_batch : default_step_batch.load(),
+          .mutual_attraction =
+              mutual_attraction != nullptr ? mutual_attraction : default_mutual_attraction.load()};
+}
 
 void World::set_threads(int threads) {
   if (threads < 0) {
@@ -481,21 +500,24 @@ void World::step(int count) {
   const bool book = def_.arithmetic == Arithmetic::book;
   const std::string plain_only = needs_plain_loops();
   if (!book && !plain_only.empty()) {
-    throw Error(std::string("World::step: arithmetic ") + arithmetic_name(def_.arithmetic) +
-                " has no kernel for " + plain_only);
+    throw Error(std::string("World::step: arithmetic ") +
+                std::string(arithmetic_name(def_.arithmetic)) + " has no kernel for " + plain_only);
   }
+  const StepBatchBackend backend = def_.backends.or_defaults().step_batch;
   const bool batchable = def_.integrator == Integrator::semi_implicit_euler &&
-                         def_.update_order == UpdateOrder::simultaneous &&
-                         batch_backend.load() != nullptr && plain_only.empty();
+                         def_.update_order == UpdateOrder::simultaneous && backend != nullptr &&
+                         plain_only.empty();
   if (!book && !batchable) {
-    throw Error(std::string("World::step: arithmetic ") + arithmetic_name(def_.arithmetic) +
-                (batch_backend.load() == nullptr
-                     ? " needs calder::movers (link calder::movers and call "
+    throw Error(std::string("World::step: arithmetic ") +
+                std::string(arithmetic_name(def_.arithmetic)) +
+                (backend == nullptr
+                     ? " needs calder::movers (link calder::movers and set WorldDef::backends."
+                       "step_batch = calder::movers::step_batch, or call "
                        "calder::movers::install())"
                      : " needs the semi_implicit_euler integrator and the simultaneous update "
                        "order"));
   }
-  const auto body_steps = static_cast<std::int64_t>(x_.size()) * count;
+  const auto body_steps = static_cast<std::int64_t>(bodies_.x.size()) * count;
   if (batchable && (!book || body_steps >= kBatchMinBodySteps)) {
     check_step_settings();
     while (count > 0) {
@@ -509,18 +531,10 @@ void World::step(int count) {
 }
 
 bool World::step_batch(int steps) {
-  const StepBatchBackend backend = batch_backend.load();
+  const StepBatchBackend backend = def_.backends.or_defaults().step_batch;
   StepBatch batch;
-  batch.x = x_;
-  batch.y = y_;
-  batch.vx = vx_;
-  batch.vy = vy_;
-  batch.ax = ax_;
-  batch.ay = ay_;
-  batch.mass = mass_;
-  batch.radius = radius_;
-  batch.friction = friction_;
-  batch.drag_area = drag_area_;
+  for_each_column([](const char*, auto& to, std::vector<double>& from) { to = from; }, batch.bodies,
+                  bodies_);
   batch.fields = &fields_;
   batch.boundary = def_.boundary;
   batch.width = def_.width;
@@ -533,8 +547,8 @@ bool World::step_batch(int steps) {
   batch.noise = &noise_;
 
   const bool book = def_.arithmetic == Arithmetic::book;
-  const std::size_t n = x_.size();
-  saved_.resize(6 * n);  // the backend saves the state into it (restore_state's layout)
+  const std::size_t n = bodies_.x.size();
+  saved_.resize(kStateColumns * n);  // the backend saves the state into it (restore_state's layout)
   std::size_t first_non_finite = n;
   batch.saved = saved_.data();
   batch.first_non_finite = &first_non_finite;
@@ -543,7 +557,8 @@ bool World::step_batch(int steps) {
   const bool ran = backend(batch, &why_not);
   if (!ran) {
     if (book) return false;
-    throw Error(std::string("World::step: arithmetic ") + arithmetic_name(def_.arithmetic) +
+    throw Error(std::string("World::step: arithmetic ") +
+                std::string(arithmetic_name(def_.arithmetic)) +
                 " needs a kernel for every field: " + why_not);
   }
   if (first_non_finite < n) {
@@ -561,7 +576,7 @@ bool World::step_batch(int steps) {
     throw Error("World::step: body " + std::to_string(i) +
                 " got a non-finite position or velocity within steps " +
                 std::to_string(step_count_ + 1) + " to " + std::to_string(step_count_ + steps) +
-                " (arithmetic " + arithmetic_name(def_.arithmetic) +
+                " (arithmetic " + std::string(arithmetic_name(def_.arithmetic)) +
                 "); the world is left as it was after step " + std::to_string(step_count_));
   }
   for (int k = 0; k < steps; ++k) time_ += def_.dt;
@@ -570,19 +585,23 @@ bool World::step_batch(int steps) {
 }
 
 void World::save_state() {
-  const std::size_t n = x_.size();
-  saved_.resize(6 * n);
+  saved_.resize(kStateColumns * body_count());
   auto out = saved_.begin();
-  for (const auto* v : {&x_, &y_, &vx_, &vy_, &ax_, &ay_})
-    out = std::copy(v->begin(), v->end(), out);
+  for_each_state(
+      [&out](const char*, const std::vector<double>& array) {
+        out = std::copy(array.begin(), array.end(), out);
+      },
+      bodies_);
 }
 
 void World::restore_state() {
   auto in = saved_.cbegin();
-  for (auto* v : {&x_, &y_, &vx_, &vy_, &ax_, &ay_}) {
-    std::copy(in, in + static_cast<std::ptrdiff_t>(v->size()), v->begin());
-    in += static_cast<std::ptrdiff_t>(v->size());
-  }
+  for_each_state(
+      [&in](const char*, std::vector<double>& array) {
+        std::copy(in, in + static_cast<std::ptrdiff_t>(array.size()), array.begin());
+        in += static_cast<std::ptrdiff_t>(array.size());
+      },
+      bodies_);
 }
 
 }  // namespace calder

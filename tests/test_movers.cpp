@@ -26,6 +26,7 @@
 #include "calder/movers.hpp"
 #include "calder/random.hpp"
 #include "calder/scene.hpp"
+#include "calder/step_batch.hpp"
 #include "calder/vec2.hpp"
 #include "calder/world.hpp"
 
@@ -149,18 +150,6 @@ std::string show(double v) {
            << "step_count " << a.step_count() << " vs " << b.step_count();
   }
   return ::testing::AssertionSuccess();
-}
-
-const char* arithmetic_name(Arithmetic a) {
-  switch (a) {
-    case Arithmetic::book:
-      return "book";
-    case Arithmetic::float64:
-      return "float64";
-    case Arithmetic::float32:
-      return "float32";
-  }
-  return "?";
 }
 
 // --- 1. book arithmetic: the plain loops' bits, field by field ---------------
@@ -545,6 +534,35 @@ TEST_F(MoversTest, LargeStepsGoToTheBackend) {
   calder::movers::install();
   EXPECT_EQ(recorded_batches, (std::vector<int>{World::kBatchSteps, 7}));
   EXPECT_EQ(world.step_count(), 310);
+}
+
+// A world's own backend wins over the process default, and a world can have
+// the kernels with no default installed.
+TEST_F(MoversTest, BackendsArePerWorld) {
+  World recorded = random_world(kFieldCases[0], 1);
+  calder::WorldDef def;
+  def.backends.step_batch = recording_backend;
+  World own(def);
+  own.add_bodies(calder::BodyColumns{.x = recorded.bodies().x, .y = recorded.bodies().y});
+  recorded_batches.clear();
+  own.step(300);  // the default (movers, installed) is not asked
+  EXPECT_EQ(recorded_batches, (std::vector<int>{World::kBatchSteps}));
+
+  calder::set_step_batch_backend(nullptr);
+  World plain = random_world(kFieldCases[0], 1);
+  plain.set_arithmetic(Arithmetic::float64);
+  EXPECT_THROW(plain.step(1), calder::Error);  // no kernels for this world
+  calder::WorldDef with_kernels;
+  with_kernels.arithmetic = Arithmetic::float64;
+  with_kernels.backends.step_batch = calder::movers::step_batch;
+  World fast(with_kernels);
+  fast.add_bodies(calder::BodyColumns{.x = recorded.bodies().x, .y = recorded.bodies().y});
+  fast.add(calder::Gravity{});
+  fast.step(10);
+  calder::movers::install();
+  EXPECT_EQ(fast.step_count(), 10);
+  // Gravity alone from rest: y grows by g (1 + 2 + ... + 10) = 5.5 px.
+  EXPECT_NEAR(fast.position(fast.body(0)).y - recorded.position(recorded.body(0)).y, 5.5, 1e-12);
 }
 
 // --- 2. the built-in scenes ----------------------------------------------------

@@ -21,6 +21,8 @@
 #include <tuple>
 #include <variant>
 
+#include "calder/backends.hpp"
+#include "calder/body_columns.hpp"
 #include "calder/forces.hpp"
 #include "calder/vec2.hpp"
 
@@ -50,9 +52,8 @@ enum class Edge { left, right, top, bottom };
 
 // Read-only view of the bodies' state that forces are evaluated at. During a
 // multi-stage integrator step the positions and velocities are the stage's.
-struct BodyView {
-  std::span<const double> x, y, vx, vy, mass, radius, friction, drag_area;
-
+// (The columns are calder/body_columns.hpp's.)
+struct BodyView : BodyColumnsOf<std::span<const double>> {
   [[nodiscard]] std::size_t size() const { return x.size(); }
   [[nodiscard]] Vec2 position(std::size_t i) const { return {x[i], y[i]}; }
   [[nodiscard]] Vec2 velocity(std::size_t i) const { return {vx[i], vy[i]}; }
@@ -68,6 +69,9 @@ struct FieldContext {
   double width = 640.0;
   double height = 240.0;
   const Noise* noise = nullptr;
+  // The world's fast methods of MutualAttraction (calder/backends.hpp; null:
+  // the process default).
+  MutualAttractionBackend mutual_attraction = nullptr;
 };
 
 // --- made-up forces ---
@@ -192,10 +196,6 @@ struct CentralBody {
   double mass = 500.0;
 };
 
-// Every body attracts every other (the n-body problem). In a world updated
-// simultaneously all forces come from one state (see PairOrder). In a world
-// updated sequentially (example 2.9), body i feels all others at their current
-// positions, including the ones already moved this step.
 // How mutual attraction is summed.
 enum class NBodyMethod {
   // The core's loops in the order PairOrder sets: bit-faithful to the book's
@@ -208,6 +208,10 @@ enum class NBodyMethod {
   barnes_hut,
 };
 
+// Every body attracts every other (the n-body problem). In a world updated
+// simultaneously all forces come from one state (see PairOrder). In a world
+// updated sequentially (example 2.9), body i feels all others at their current
+// positions, including the ones already moved this step.
 struct MutualAttraction {
   AttractionLaw law{};
   PairOrder order = PairOrder::pairwise;
@@ -218,14 +222,6 @@ struct MutualAttraction {
   int threads = 0;                // direct, barnes_hut: 0 = every core
   bool enabled = true;
 };
-
-// The fast methods (NBodyMethod::direct, barnes_hut) live in calder::nbody,
-// which needs OpenMP; the core stays dependency-free. calder::nbody::install()
-// registers them here; a step that asks for them without it throws
-// calder::Error. The backend adds the pair accelerations of all bodies.
-using MutualAttractionBackend = void (*)(const MutualAttraction& field, const FieldContext& context,
-                                         std::span<double> ax, std::span<double> ay);
-void set_mutual_attraction_backend(MutualAttractionBackend backend);
 
 // Any force of the user's: called once per body, returns the force on body i.
 using CustomForceFunction =

@@ -70,11 +70,17 @@ Vec2 lift(Vec2 velocity, double coefficient);
 
 // --- attraction ---
 
-// What is clamped before the inverse-square law is applied.
+// What is clamped before the inverse-square law is applied: the one list of
+// the inverse-square laws, shared by the core, calder::nbody (nbody::Law is
+// this enum) and calder::movers.
 enum class DistanceClamp {
   distance,          // d = constrain(|r|, min, max); strength / (d * d)   (examples 2.6-2.9)
   squared_distance,  // dsq = constrain(|r|^2, min, max); strength / dsq   (exercise 2.16)
   none,              // physical: strength / (|r|^2 + softening^2), Plummer softening
+  // The same laws by the names calder::nbody's kernels use.
+  clamp_distance = distance,
+  clamp_squared_distance = squared_distance,
+  plummer = none,
 };
 
 // How G and the two masses are multiplied. The sketches differ in the last
@@ -113,6 +119,12 @@ struct AttractionLaw {
 
   // Throws calder::Error naming `where` and the field for a bad parameter.
   void validate(const char* where) const;
+  // Whether this is one of the inverse-square laws of DistanceClamp (no
+  // custom law, exponent 2, no repulsive core): the laws that calder::nbody's
+  // and calder::movers' kernels run.
+  [[nodiscard]] bool inverse_square() const {
+    return !custom && exponent == 2.0 && repulsion == 0.0;
+  }
 };
 
 // The force that a source (an attractor, or another body) at source_position

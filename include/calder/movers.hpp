@@ -3,11 +3,13 @@
 // thousands to millions of movers that don't interact (rain, particles,
 // crowds under wind and drag).
 //
-// After calder::movers::install(), World::step(count) hands large worlds to
-// these kernels instead of stepping body by body through the fields:
+// A world whose WorldDef::backends.step_batch is calder::movers::step_batch
+// (or any world, after calder::movers::install()) hands its large steps,
+// World::step(count), to these kernels instead of stepping body by body
+// through the fields:
 //
-//   calder::movers::install();            // once, at start-up
-//   calder::World world({.arithmetic = calder::Arithmetic::book, .threads = 0});
+//   calder::World world({.arithmetic = calder::Arithmetic::book, .threads = 0,
+//                        .backends = {.step_batch = calder::movers::step_batch}});
 //   ... add 100000 bodies, Gravity, Drag, a bounce boundary ...
 //   world.step(1000);                     // vectorised, threaded, cache-blocked
 //
@@ -17,11 +19,14 @@
 // squared clamp, Plummer), with the bounce, wrap or no boundary. A world with
 // mutual attraction or a custom force steps body by body as before.
 //
-// How: the bodies are cut into tiles of kTile; one thread advances a tile
-// through a whole batch of steps (World::kBatchSteps) while it sits in the
-// L1 cache, one pass per field per step over the tile's arrays (the last
-// fused with the update), each pass a loop over vectors of bodies (AVX-512,
-// AVX2 + FMA or SSE2, as calder::nbody's kernels). Bodies don't interact,
+// How: the fields are compiled once per batch into a list of ops (plan.cpp:
+// one op per enabled field). The bodies are cut into tiles of kTile; one
+// thread copies a tile's columns into an L1-resident chunk (in the batch's
+// precision) and advances it through the whole batch of steps
+// (World::kBatchSteps): each step is one pass over the chunk per op, the
+// last op's pass fused with the update and the boundary, each pass a loop
+// over vectors of bodies (AVX-512, AVX2 + FMA or SSE2, as calder::nbody's
+// kernels; details in src/movers/kernels_impl.hpp). Bodies don't interact,
 // so no order between tiles matters: results are bit-identical for any
 // number of threads, and there is no broad phase to pay for.
 //
@@ -46,8 +51,12 @@ namespace calder::movers {
 // Bodies per tile (one thread, one cache-resident block).
 inline constexpr std::size_t kTile = 256;
 
-// Registers the kernels with the core (calder::set_step_batch_backend).
-// Idempotent.
+// The kernels as a StepBatchBackend (calder/backends.hpp), for
+// WorldDef::backends.step_batch.
+bool step_batch(const StepBatch& batch, std::string* why_not);
+
+// Makes them the process default of worlds that name none
+// (calder::set_step_batch_backend). Idempotent.
 void install();
 
 // Whether the kernels can step this world: "" when they can, otherwise why

@@ -42,6 +42,7 @@
 #include <memory>
 #include <span>
 
+#include "calder/backends.hpp"
 #include "calder/forces.hpp"
 #include "calder/vec2.hpp"
 
@@ -62,7 +63,9 @@ enum class Precision {
   float64,
 };
 
-enum class Law { plummer, clamp_distance, clamp_squared_distance };
+// The laws are the core's (calder/forces.hpp), by their kernel names:
+// Law::plummer, Law::clamp_distance, Law::clamp_squared_distance.
+using Law = DistanceClamp;
 
 struct Options {
   double G = 1.0;
@@ -174,11 +177,16 @@ void barnes_hut_accelerations(std::span<const double> x, std::span<const double>
 
 // --- the World's fast methods -----------------------------------------------------
 
-// Lets MutualAttraction fields use NBodyMethod::direct and barnes_hut (through
-// calder::set_mutual_attraction_backend): their law goes through options_for
-// (a custom law throws calder::Error at the step), single_precision selects
-// float32, threads and theta pass through. Barnes-Hut keeps one solver per
-// calling thread. Idempotent.
+// NBodyMethod::direct and barnes_hut for MutualAttraction fields, as a
+// MutualAttractionBackend (calder/backends.hpp) for
+// WorldDef::backends.mutual_attraction: the field's law goes through
+// options_for (a custom law throws calder::Error at the step),
+// single_precision selects float32, threads and theta pass through.
+// Barnes-Hut keeps one solver per calling thread.
+void mutual_attraction(const MutualAttraction& field, const FieldContext& context,
+                       std::span<double> ax, std::span<double> ay);
+// Makes it the process default of worlds that name none
+// (calder::set_mutual_attraction_backend). Idempotent.
 void install();
 
 // --- about the build --------------------------------------------------------------

@@ -14,14 +14,18 @@
 // or a world steps all bodies under its fields with one call, world.step().
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <deque>
 #include <optional>
 #include <span>
 #include <string>
+#include <string_view>
 #include <vector>
 
+#include "calder/backends.hpp"
+#include "calder/body_columns.hpp"
 #include "calder/fields.hpp"
 #include "calder/random.hpp"
 #include "calder/vec2.hpp"
@@ -100,6 +104,25 @@ enum class Arithmetic {
   float32,
 };
 
+// Every arithmetic by its name ("book", "float64", "float32"): the one list
+// that scene files, the command line and messages use.
+struct ArithmeticName {
+  std::string_view name;
+  Arithmetic value;
+};
+inline constexpr std::array<ArithmeticName, 3> kArithmeticNames{{
+    {"book", Arithmetic::book},
+    {"float64", Arithmetic::float64},
+    {"float32", Arithmetic::float32},
+}};
+// Its name in kArithmeticNames.
+[[nodiscard]] constexpr std::string_view arithmetic_name(Arithmetic arithmetic) {
+  for (const ArithmeticName& a : kArithmeticNames) {
+    if (a.value == arithmetic) return a.name;
+  }
+  return "?";
+}
+
 struct WorldDef {
   double width = 640.0;
   double height = 240.0;
@@ -108,7 +131,7 @@ struct WorldDef {
   UpdateOrder update_order = UpdateOrder::simultaneous;
   Boundary boundary{};
   std::uint32_t seed = 0;  // seeds the world's random() and noise()
-  // float64 and float32 need calder::movers::install() and a world it has
+  // float64 and float32 need calder::movers' kernels (backends) and a world it has
   // kernels for (semi-implicit Euler, simultaneous, no custom force or
   // mutual attraction); World::step throws calder::Error otherwise.
   Arithmetic arithmetic = Arithmetic::book;
@@ -118,37 +141,11 @@ struct WorldDef {
   // The book's topSpeed: > 0 limits each body's speed after v += a dt, as
   // p5's vel.limit(topSpeed) (semi_implicit_euler, book arithmetic); 0, none.
   double max_speed = 0.0;
+  // The whole-world kernels of this world (calder/backends.hpp); null: the
+  // process defaults that calder::movers::install() and
+  // calder::nbody::install() set.
+  Backends backends{};
 };
-
-// Everything a whole-world batch of steps reads and writes (World::step hands
-// it to the backend that calder::movers::install() registers).
-struct StepBatch {
-  std::span<double> x, y, vx, vy, ax, ay;
-  std::span<const double> mass, radius, friction, drag_area;
-  const std::deque<Field>* fields = nullptr;
-  Boundary boundary{};
-  double width = 640.0;
-  double height = 240.0;
-  double dt = 1.0;
-  double time = 0.0;  // of the first step; each next one adds dt
-  int steps = 1;
-  Arithmetic arithmetic = Arithmetic::book;
-  int threads = 0;
-  const Noise* noise = nullptr;
-  // Before advancing them, the backend copies x, y, vx, vy, ax, ay into
-  // saved (6 n doubles: all x, then all y, ...), so that the world can undo
-  // the batch; afterwards it sets *first_non_finite to the lowest index of a
-  // body whose position or velocity is not finite (n if none). Done tile by
-  // tile in the backend's threads, not serially by the world.
-  double* saved = nullptr;
-  std::size_t* first_non_finite = nullptr;
-};
-// Runs batch.steps simultaneous semi-implicit Euler steps and returns true,
-// or returns false, changing nothing, when it has no kernel for one of the
-// fields (then *why_not, if given, names it). It may throw only before it
-// changes anything.
-using StepBatchBackend = bool (*)(const StepBatch& batch, std::string* why_not);
-void set_step_batch_backend(StepBatchBackend backend);
 
 struct BodyDef {
   Vec2 position{};
@@ -166,10 +163,8 @@ struct BodyDef {
 
 // Bodies as arrays, for World::add_bodies: each column holds one value per
 // body, or one value for all, or none (BodyDef's default; friction NaN:
-// none of its own).
-struct BodyColumns {
-  std::span<const double> x{}, y{}, vx{}, vy{}, mass{}, radius{}, friction{}, drag_area{};
-};
+// none of its own). The accelerations (ax, ay) start at 0: not an input.
+using BodyColumns = BodyColumnsOf<std::span<const double>>;
 
 struct BodyId {
   std::uint32_t index = UINT32_MAX;
@@ -190,7 +185,7 @@ class World {
   // grow once. Returns the first's id.
   BodyId add_bodies(const BodyColumns& columns);
   Mover mover(BodyId id);
-  [[nodiscard]] std::size_t body_count() const { return x_.size(); }
+  [[nodiscard]] std::size_t body_count() const { return bodies_.x.size(); }
   [[nodiscard]] BodyId body(std::size_t index) const;  // the id of the index-th body
   void clear_bodies();
 
@@ -301,7 +296,7 @@ class World {
 
   WorldDef def_;
   // Structure of arrays: body i is index i of each.
-  std::vector<double> x_, y_, vx_, vy_, ax_, ay_, mass_, radius_, friction_, drag_area_;
+  BodyColumnsOf<std::vector<double>> bodies_;
   std::deque<Field> fields_;
   Random random_;
   Noise noise_;

@@ -69,13 +69,28 @@ struct Simd<float> {
   using M = decltype(V{} < V{});
 };
 
-// The tile's bodies in R, padded to whole vectors (lanes past the tile get a
-// harmless body: unit mass at the origin, at rest), 64-byte aligned.
+// Room for a tile padded to whole vectors, each column a whole number of
+// 64-byte lines (so that every column of a 64-byte aligned Chunk is aligned).
 template <class R>
-struct Chunk {
-  static constexpr std::size_t kSize = kTile + kVectorBytes / sizeof(R);
-  alignas(64) R x[kSize], y[kSize], vx[kSize], vy[kSize], ax[kSize], ay[kSize];
-  alignas(64) R m[kSize], inv_m[kSize], r[kSize], area[kSize], mu[kSize];
+inline constexpr std::size_t kChunkSize = kTile + 64 / sizeof(R);
+static_assert(kChunkSize<float> * sizeof(float) % 64 == 0 &&
+              kChunkSize<double> * sizeof(double) % 64 == 0 && 64 >= kVectorBytes);
+
+// One column of a chunk, left uninitialised on purpose (BodyColumnsOf's
+// `{}` would otherwise zero ~25 KB per tile and batch, measurable in the
+// float64 kernels): each tile's load writes every value the kernels read.
+template <class R>
+struct ChunkColumn {
+  R values[kChunkSize<R>];
+  ChunkColumn() {}  // NOLINT(modernize-use-equals-default): = default would zero it under {}
+};
+
+// The tile's bodies in R, padded to whole vectors (lanes past the tile
+// repeat its first body, a valid one, and are never stored back), with
+// 1 / mass beside them, 64-byte aligned.
+template <class R>
+struct alignas(64) Chunk : BodyColumnsOf<ChunkColumn<R>> {
+  ChunkColumn<R> inv_m;
 };
 
 // One vector of a chunk's bodies: the state a step changes, in registers; the
@@ -93,11 +108,11 @@ struct Block {
     __builtin_memcpy(&v, from, sizeof v);
     return v;
   }
-  [[gnu::always_inline]] V m() const { return load(chunk->m + at); }
-  [[gnu::always_inline]] V inv_m() const { return load(chunk->inv_m + at); }
-  [[gnu::always_inline]] V r() const { return load(chunk->r + at); }
-  [[gnu::always_inline]] V area() const { return load(chunk->area + at); }
-  [[gnu::always_inline]] V mu() const { return load(chunk->mu + at); }
+  [[gnu::always_inline]] V m() const { return load(chunk->mass.values + at); }
+  [[gnu::always_inline]] V inv_m() const { return load(chunk->inv_m.values + at); }
+  [[gnu::always_inline]] V r() const { return load(chunk->radius.values + at); }
+  [[gnu::always_inline]] V area() const { return load(chunk->drag_area.values + at); }
+  [[gnu::always_inline]] V mu() const { return load(chunk->friction.values + at); }
 };
 
 // Vector v of a chunk; its accelerations from the chunk (the tile's) or +0.
@@ -107,12 +122,12 @@ template <class R>
   Block<R> b;
   b.chunk = &chunk;
   b.at = v * static_cast<std::size_t>(Block<R>::kLanes);
-  b.x = Block<R>::load(chunk.x + b.at);
-  b.y = Block<R>::load(chunk.y + b.at);
-  b.vx = Block<R>::load(chunk.vx + b.at);
-  b.vy = Block<R>::load(chunk.vy + b.at);
-  b.ax = accelerations ? Block<R>::load(chunk.ax + b.at) : typename Simd<R>::V{};
-  b.ay = accelerations ? Block<R>::load(chunk.ay + b.at) : typename Simd<R>::V{};
+  b.x = Block<R>::load(chunk.x.values + b.at);
+  b.y = Block<R>::load(chunk.y.values + b.at);
+  b.vx = Block<R>::load(chunk.vx.values + b.at);
+  b.vy = Block<R>::load(chunk.vy.values + b.at);
+  b.ax = accelerations ? Block<R>::load(chunk.ax.values + b.at) : typename Simd<R>::V{};
+  b.ay = accelerations ? Block<R>::load(chunk.ay.values + b.at) : typename Simd<R>::V{};
   return b;
 }
 
@@ -178,41 +193,6 @@ template <class V, class R>
 [[gnu::always_inline]] inline V splat(R value) {
   return V{} + value;
 }
-
-// Op's parameters in the kernel's precision.
-template <class R>
-struct Params {
-  R fx, fy, c, normal, x_min, x_max, y_min, y_max, tolerance, px, py, gm, G, mass, lo, hi, eps,
-      margin, reach;
-  bool never_reverse, masses_first;
-  Edge surface;
-  AttractorLaw law;
-
-  explicit Params(const Op& op)
-      : fx(R(op.fx)),
-        fy(R(op.fy)),
-        c(R(op.c)),
-        normal(R(op.normal)),
-        x_min(R(op.x_min)),
-        x_max(R(op.x_max)),
-        y_min(R(op.y_min)),
-        y_max(R(op.y_max)),
-        tolerance(R(op.tolerance)),
-        px(R(op.px)),
-        py(R(op.py)),
-        gm(R(op.G * op.mass)),
-        G(R(op.G)),
-        mass(R(op.mass)),
-        lo(R(op.lo)),
-        hi(R(op.hi)),
-        eps(R(op.softening)),
-        margin(R(op.margin)),
-        reach(R(op.reach)),
-        never_reverse(op.never_reverse),
-        masses_first(op.masses_first),
-        surface(op.surface),
-        law(op.law) {}
-};
 
 // acceleration += force / mass (book) or force * (1 / mass) (fast), in the
 // lanes where apply is set.
@@ -340,7 +320,7 @@ template <class R, bool kBook, bool kNeverReverse>
 
 // A fixed attractor at (px, py) of mass M: calder::attraction(source =
 // attractor, target = body) for the inverse-square laws.
-template <class R, bool kBook, AttractorLaw kLaw, bool kSoftened>
+template <class R, bool kBook, DistanceClamp kLaw, bool kSoftened>
 [[gnu::always_inline]] inline void op_attractor(Block<R>& b, const Params<R>& p) {
   using V = typename Simd<R>::V;
   using M = typename Simd<R>::M;
@@ -355,11 +335,11 @@ template <class R, bool kBook, AttractorLaw kLaw, bool kSoftened>
       const V numerator = p.masses_first ? p.G * (p.mass * m) : p.G * p.mass * m;
       V strength;
       M apply = ~M{};
-      if constexpr (kLaw == AttractorLaw::clamp_distance) {
+      if constexpr (kLaw == DistanceClamp::distance) {
         V dc = d < p.hi ? d : splat<V>(p.hi);  // constrain(d, lo, hi) = max(min(d, hi), lo)
         dc = dc > p.lo ? dc : splat<V>(p.lo);
         strength = numerator / (dc * dc);
-      } else if constexpr (kLaw == AttractorLaw::clamp_squared) {
+      } else if constexpr (kLaw == DistanceClamp::squared_distance) {
         V q = d_sq < p.hi ? d_sq : splat<V>(p.hi);
         q = q > p.lo ? q : splat<V>(p.lo);
         strength = numerator / q;
@@ -378,11 +358,11 @@ template <class R, bool kBook, AttractorLaw kLaw, bool kSoftened>
     } else {
       // acceleration = G M w r, with w = 1 / (d_c^2 d) (clamped) or 1 / s^3 (Plummer).
       V denominator;
-      if constexpr (kLaw == AttractorLaw::clamp_distance) {
+      if constexpr (kLaw == DistanceClamp::distance) {
         V dc = d < p.hi ? d : splat<V>(p.hi);
         dc = dc > p.lo ? dc : splat<V>(p.lo);
         denominator = dc * dc * d;
-      } else if constexpr (kLaw == AttractorLaw::clamp_squared) {
+      } else if constexpr (kLaw == DistanceClamp::squared_distance) {
         V q = d_sq < p.hi ? d_sq : splat<V>(p.hi);
         q = q > p.lo ? q : splat<V>(p.lo);
         denominator = q * d;
@@ -545,13 +525,13 @@ template <class R, bool kBook, class Each>
                       CALDER_MOVERS_INLINE { op_gravity_scaled<R, kBook>(b, p.fx, p.fy); });
     case OpKind::drag:
       if (p.never_reverse) {
-        if (op.everywhere)
+        if (p.everywhere)
           return each([=](Block<R>& b)
                           CALDER_MOVERS_INLINE { op_drag<R, kBook, true, true>(b, p, dt); });
         return each([=](Block<R>& b)
                         CALDER_MOVERS_INLINE { op_drag<R, kBook, true, false>(b, p, dt); });
       }
-      if (op.everywhere)
+      if (p.everywhere)
         return each([=](Block<R>& b)
                         CALDER_MOVERS_INLINE { op_drag<R, kBook, false, true>(b, p, dt); });
       return each([=](Block<R>& b)
@@ -566,21 +546,21 @@ template <class R, bool kBook, class Each>
       });
     case OpKind::attractor:
       switch (p.law) {
-        case AttractorLaw::clamp_distance:
+        case DistanceClamp::distance:
           return each([=](Block<R>& b) CALDER_MOVERS_INLINE {
-            op_attractor<R, kBook, AttractorLaw::clamp_distance, false>(b, p);
+            op_attractor<R, kBook, DistanceClamp::distance, false>(b, p);
           });
-        case AttractorLaw::clamp_squared:
+        case DistanceClamp::squared_distance:
           return each([=](Block<R>& b) CALDER_MOVERS_INLINE {
-            op_attractor<R, kBook, AttractorLaw::clamp_squared, false>(b, p);
+            op_attractor<R, kBook, DistanceClamp::squared_distance, false>(b, p);
           });
-        case AttractorLaw::plummer:
+        case DistanceClamp::none:
           if (p.eps == R(0))
             return each([=](Block<R>& b) CALDER_MOVERS_INLINE {
-              op_attractor<R, kBook, AttractorLaw::plummer, false>(b, p);
+              op_attractor<R, kBook, DistanceClamp::none, false>(b, p);
             });
           return each([=](Block<R>& b) CALDER_MOVERS_INLINE {
-            op_attractor<R, kBook, AttractorLaw::plummer, true>(b, p);
+            op_attractor<R, kBook, DistanceClamp::none, true>(b, p);
           });
       }
       return;
@@ -617,8 +597,8 @@ template <class R, bool kBook>
 // the update together would store least, but then every vector goes through
 // the ops' dispatch: slower on AVX2, measured.)
 template <class R, bool kBook>
-void advance_chunk(const Plan& plan, const std::vector<Params<R>>& params, Chunk<R>& chunk,
-                   std::size_t vectors, std::vector<std::size_t>& passes) {
+void advance_chunk(const Plan& plan, Chunk<R>& chunk, std::size_t vectors,
+                   std::vector<std::size_t>& passes) {
   using V = typename Simd<R>::V;
   const R width = R(plan.width);
   const R height = R(plan.height);
@@ -632,7 +612,7 @@ void advance_chunk(const Plan& plan, const std::vector<Params<R>>& params, Chunk
     passes.clear();
     for (std::size_t k = 0; k < plan.ops.size(); ++k) {
       R gx, gy;
-      if (constant_op<R, kBook>(plan.ops[k], params[k], gx, gy)) {
+      if (constant_op<R, kBook>(plan.ops[k], plan.ops[k].template params<R>(), gx, gy)) {
         cx += gx;
         cy += gy;
       } else {
@@ -656,11 +636,12 @@ void advance_chunk(const Plan& plan, const std::vector<Params<R>>& params, Chunk
         for (std::size_t v = 0; v < vectors; ++v) {
           Block<R> b = q == 0 ? first_load(v) : load_block(chunk, v, true);
           force(b);
-          __builtin_memcpy(chunk.ax + b.at, &b.ax, sizeof(V));
-          __builtin_memcpy(chunk.ay + b.at, &b.ay, sizeof(V));
+          __builtin_memcpy(chunk.ax.values + b.at, &b.ax, sizeof(V));
+          __builtin_memcpy(chunk.ay.values + b.at, &b.ay, sizeof(V));
         }
       };
-      apply_op<R, kBook>(each, plan.ops[k], params[k], step, width, height, dt);
+      apply_op<R, kBook>(each, plan.ops[k], plan.ops[k].template params<R>(), step, width, height,
+                         dt);
     }
     // The last pass: the last op, the update, the boundary.
     const bool alone = passes.size() <= 1;
@@ -670,15 +651,16 @@ void advance_chunk(const Plan& plan, const std::vector<Params<R>>& params, Chunk
           Block<R> b = alone ? first_load(v) : load_block(chunk, v, true);
           force(b);
           update_one(b);
-          __builtin_memcpy(chunk.x + b.at, &b.x, sizeof(V));
-          __builtin_memcpy(chunk.y + b.at, &b.y, sizeof(V));
-          __builtin_memcpy(chunk.vx + b.at, &b.vx, sizeof(V));
-          __builtin_memcpy(chunk.vy + b.at, &b.vy, sizeof(V));
+          __builtin_memcpy(chunk.x.values + b.at, &b.x, sizeof(V));
+          __builtin_memcpy(chunk.y.values + b.at, &b.y, sizeof(V));
+          __builtin_memcpy(chunk.vx.values + b.at, &b.vx, sizeof(V));
+          __builtin_memcpy(chunk.vy.values + b.at, &b.vy, sizeof(V));
         }
       };
       if (passes.empty()) return each([](Block<R>&) CALDER_MOVERS_INLINE {});
       const std::size_t k = passes.back();
-      apply_op<R, kBook>(each, plan.ops[k], params[k], step, width, height, dt);
+      apply_op<R, kBook>(each, plan.ops[k], plan.ops[k].template params<R>(), step, width, height,
+                         dt);
     };
     if (boundary.kind == BoundaryKind::bounce && boundary.use_radius) {
       last([=](Block<R>& b) CALDER_MOVERS_INLINE { update_bounce<R, true>(b, walls, dt); });
@@ -691,38 +673,27 @@ void advance_chunk(const Plan& plan, const std::vector<Params<R>>& params, Chunk
 template <class R, bool kBook>
 void advance_tile(const Plan& plan, const Tile& tile) {
   if (plan.steps <= 0 || tile.n == 0) return;
-  // The ops' parameters, converted once per tile.
-  thread_local std::vector<Params<R>> params;
-  params.clear();
-  for (const Op& op : plan.ops) params.emplace_back(op);
   Chunk<R> chunk;  // on the stack: a thread_local's address costs a call per access here
   constexpr auto lanes = static_cast<std::size_t>(Block<R>::kLanes);
   const std::size_t vectors = (tile.n + lanes - 1) / lanes;
-  for (std::size_t i = 0; i < vectors * lanes; ++i) {
-    const bool real = i < tile.n;
-    const std::size_t k = real ? i : 0;
-    chunk.x[i] = real ? R(tile.x[k]) : R(0);
-    chunk.y[i] = real ? R(tile.y[k]) : R(0);
-    chunk.vx[i] = real ? R(tile.vx[k]) : R(0);
-    chunk.vy[i] = real ? R(tile.vy[k]) : R(0);
-    chunk.ax[i] = real ? R(tile.ax[k]) : R(0);
-    chunk.ay[i] = real ? R(tile.ay[k]) : R(0);
-    chunk.m[i] = real ? R(tile.mass[k]) : R(1);
-    chunk.inv_m[i] = real ? R(1.0 / tile.mass[k]) : R(1);
-    chunk.r[i] = real ? R(tile.radius[k]) : R(0);
-    chunk.area[i] = real ? R(tile.drag_area[k]) : R(1);
-    chunk.mu[i] = real ? R(tile.friction[k]) : R(0);
-  }
+  const std::size_t padded = vectors * lanes;
+  for_each_column(
+      [&](const char*, ChunkColumn<R>& to, const double* from) {
+        for (std::size_t i = 0; i < tile.n; ++i) to.values[i] = R(from[i]);
+        std::fill(to.values + tile.n, to.values + padded, R(from[0]));
+      },
+      chunk, tile.bodies);
+  const double* mass = tile.bodies.mass;
+  for (std::size_t i = 0; i < padded; ++i)
+    chunk.inv_m.values[i] = R(1.0 / mass[i < tile.n ? i : 0]);
   thread_local std::vector<std::size_t> passes;
-  advance_chunk<R, kBook>(plan, params, chunk, vectors, passes);
-  for (std::size_t i = 0; i < tile.n; ++i) {
-    tile.x[i] = chunk.x[i];
-    tile.y[i] = chunk.y[i];
-    tile.vx[i] = chunk.vx[i];
-    tile.vy[i] = chunk.vy[i];
-    tile.ax[i] = 0.0;  // the update clears the accelerations
-    tile.ay[i] = 0.0;
-  }
+  advance_chunk<R, kBook>(plan, chunk, vectors, passes);
+  // The last pass keeps the accelerations in registers: cleared by the update.
+  std::fill_n(chunk.ax.values, tile.n, R(0));
+  std::fill_n(chunk.ay.values, tile.n, R(0));
+  for_each_state([&](const char*, const ChunkColumn<R>& from,
+                     double* to) { std::copy_n(from.values, tile.n, to); },
+                 chunk, tile.bodies);
 }
 
 inline void advance_book64(const Plan& plan, const Tile& tile) {

@@ -6,9 +6,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <span>
 #include <string>
 #include <vector>
 
+#include "calder/step_batch.hpp"
 #include "plan.hpp"
 
 #if defined(_OPENMP)
@@ -23,7 +25,9 @@ namespace {
 // microseconds, comparable to waking a thread.
 constexpr std::size_t kMinBodiesPerThread = 2 * kTile;
 
-bool run_batch(const StepBatch& batch, std::string* why_not) {
+}  // namespace
+
+bool step_batch(const StepBatch& batch, std::string* why_not) {
   // One plan per calling thread keeps its storage from batch to batch.
   // (A reference: inside the parallel loop, the name of a thread_local would
   // mean each worker thread's own, empty, plan.)
@@ -35,7 +39,7 @@ bool run_batch(const StepBatch& batch, std::string* why_not) {
   if (batch.arithmetic == Arithmetic::float64) advance = table.fast64;
   if (batch.arithmetic == Arithmetic::float32) advance = table.fast32;
 
-  const std::size_t n = batch.x.size();
+  const std::size_t n = batch.bodies.x.size();
   const auto tiles = static_cast<long long>((n + kTile - 1) / kTile);
   int threads = batch.threads > 0 ? batch.threads : max_threads();
   threads = static_cast<int>(
@@ -47,28 +51,22 @@ bool run_batch(const StepBatch& batch, std::string* why_not) {
   const auto run_tile = [&](long long t) {
     const std::size_t first = static_cast<std::size_t>(t) * kTile;
     const std::size_t count = std::min(kTile, n - first);
-    double* const state[6] = {batch.x.data(),  batch.y.data(),  batch.vx.data(),
-                              batch.vy.data(), batch.ax.data(), batch.ay.data()};
     if (batch.saved != nullptr) {
-      for (std::size_t k = 0; k < 6; ++k) {
-        std::copy(state[k] + first, state[k] + first + count, batch.saved + k * n + first);
-      }
+      std::size_t k = 0;
+      for_each_state(
+          [&](const char*, std::span<double> column) {
+            std::copy_n(column.data() + first, count, batch.saved + (k++) * n + first);
+          },
+          batch.bodies);
     }
-    const detail::Tile tile{state[0] + first,
-                            state[1] + first,
-                            state[2] + first,
-                            state[3] + first,
-                            state[4] + first,
-                            state[5] + first,
-                            batch.mass.data() + first,
-                            batch.radius.data() + first,
-                            batch.friction.data() + first,
-                            batch.drag_area.data() + first,
-                            count};
+    detail::Tile tile{{}, count};
+    for_each_column([first](const char*, auto*& to, auto column) { to = column.data() + first; },
+                    tile.bodies, batch.bodies);
     advance(plan, tile);
+    const auto& b = batch.bodies;
     for (std::size_t i = first; i < first + count; ++i) {
-      if (!std::isfinite(state[0][i]) || !std::isfinite(state[1][i]) ||
-          !std::isfinite(state[2][i]) || !std::isfinite(state[3][i])) {
+      if (!std::isfinite(b.x[i]) || !std::isfinite(b.y[i]) || !std::isfinite(b.vx[i]) ||
+          !std::isfinite(b.vy[i])) {
         bad[static_cast<std::size_t>(t)] = i;
         break;
       }
@@ -94,9 +92,7 @@ bool run_batch(const StepBatch& batch, std::string* why_not) {
   return true;
 }
 
-}  // namespace
-
-void install() { set_step_batch_backend(run_batch); }
+void install() { set_step_batch_backend(step_batch); }
 
 std::string unsupported(const World& world) {
   if (world.integrator() != Integrator::semi_implicit_euler) {

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "calder/fields.hpp"
+#include "calder/step_batch.hpp"
 #include "calder/world.hpp"
 
 namespace calder::movers::detail {
@@ -26,31 +27,48 @@ enum class OpKind : std::uint8_t {
   lift,            // perpendicular to the velocity
 };
 
-enum class AttractorLaw : std::uint8_t { clamp_distance, clamp_squared, plummer };
+// An op's parameters in the precision R of a kernel (each field kind's
+// op_of in plan.cpp writes them, once for each precision). Parameters not
+// used by a kind keep their defaults.
+template <class R>
+struct Params {
+  R fx{}, fy{};     // uniform: the force; gravity_scaled: g
+  R c{};            // drag: c; friction: mu; edge_force, fan: strength; lift: coefficient
+  R normal = R(1);  // friction
+  // drag: strictly inside (x_min, x_max) x (y_min, y_max); everywhere: no
+  // region (Drag), the bounds infinite
+  R x_min{}, x_max{}, y_min{}, y_max{};
+  bool everywhere = false;
+  bool never_reverse = false;   // drag, friction
+  Edge surface = Edge::bottom;  // friction
+  R tolerance = R(1);           // friction
+  R px{}, py{};                 // attractor, fan: position
+  // attractor: the law, G and the attractor's mass M, G * M, the clamp
+  // bounds, the softening (eps); the book's two groupings of G M m
+  DistanceClamp law = DistanceClamp::distance;
+  bool masses_first = false;
+  R G = R(1), mass{}, gm{}, lo{}, hi{}, eps{};
+  R margin{};  // edge_force
+  R reach{};   // fan
+};
 
-// One pass over a tile. Fields not used by a kind keep their defaults.
+// One pass over a tile.
 struct Op {
   OpKind kind = OpKind::uniform;
-  double fx = 0.0;  // uniform: the force; gravity_scaled: g
-  double fy = 0.0;
   // uniform: when not null, the force of each step of the batch (x, y pairs):
   // NoiseWind changes with time.
   const double* per_step = nullptr;
-  double c = 0.0;       // drag: c; friction: mu; edge_force, fan: strength; lift: coefficient
-  double normal = 1.0;  // friction
-  // drag: strictly inside (x_min, x_max) x (y_min, y_max); +-infinity: everywhere
-  double x_min = 0.0, x_max = 0.0, y_min = 0.0, y_max = 0.0;
-  bool everywhere = false;      // drag: no region (Drag), the bounds above are infinite
-  bool never_reverse = false;   // drag, friction
-  Edge surface = Edge::bottom;  // friction
-  double tolerance = 1.0;       // friction
-  double px = 0.0, py = 0.0;    // attractor, fan: position
-  // attractor: law, G * M and G, M (the book's two groupings), clamp bounds, softening
-  AttractorLaw law = AttractorLaw::clamp_distance;
-  bool masses_first = false;
-  double G = 1.0, mass = 0.0, lo = 0.0, hi = 0.0, softening = 0.0;
-  double margin = 0.0;  // edge_force
-  double reach = 0.0;   // fan
+  Params<double> p64;
+  Params<float> p32;
+
+  template <class R>
+  [[nodiscard]] const Params<R>& params() const {
+    if constexpr (sizeof(R) == sizeof(double)) {
+      return p64;
+    } else {
+      return p32;
+    }
+  }
 };
 
 struct Plan {
@@ -69,19 +87,10 @@ bool compile(const StepBatch& batch, Plan& plan, std::string* why_not);
 // The reason a world's fields can't be compiled, or "".
 std::string unsupported_field(const std::deque<Field>& fields);
 
-// One tile: slices of the world's arrays.
+// One tile: slices of the world's columns (kTile bodies at most).
 struct Tile {
-  double* x;
-  double* y;
-  double* vx;
-  double* vy;
-  double* ax;
-  double* ay;
-  const double* mass;
-  const double* radius;
-  const double* friction;  // NaN: the Friction field's mu
-  const double* drag_area;
-  std::size_t n;  // <= kTile
+  BodyColumnsOf<double*, const double*> bodies;
+  std::size_t n;
 };
 
 // Advances one tile through plan.steps steps.

@@ -147,37 +147,6 @@ LawParams law_params(const Options& options, const FloatFrame& frame) {
 
 }  // namespace detail
 
-Options options_for(const AttractionLaw& law) {
-  if (law.custom) {
-    throw Error("nbody::options_for: a custom force law has no n-body kernel");
-  }
-  if (law.exponent != 2.0 || law.repulsion != 0.0) {
-    throw Error(
-        "nbody::options_for: the n-body kernels support the inverse-square law only (got "
-        "exponent " +
-        calder::detail::format_number(law.exponent) + ", repulsion " +
-        calder::detail::format_number(law.repulsion) + ")");
-  }
-  law.validate("nbody::options_for");
-  Options o;
-  o.G = law.G;
-  switch (law.clamp) {
-    case DistanceClamp::distance:
-      o.law = Law::clamp_distance;
-      break;
-    case DistanceClamp::squared_distance:
-      o.law = Law::clamp_squared_distance;
-      break;
-    case DistanceClamp::none:
-      o.law = Law::plummer;
-      break;
-  }
-  o.softening = law.softening;
-  o.min_distance = law.min;
-  o.max_distance = law.max;
-  return o;
-}
-
 Vec2 reference_acceleration(std::span<const double> x, std::span<const double> y,
                             std::span<const double> mass, std::size_t target,
                             const Options& options) {

@@ -2,42 +2,31 @@
 // calder::nbody: picks the kernel variant (kernels.cpp compiled per
 // instruction set) for the running CPU, once.
 //
-// CMake defines CALDER_NBODY_HAS_<variant> for each variant it compiled:
+// The variants are CMakeLists.txt's (CALDER_KERNEL_VARIANTS, generated):
 // "native" alone (the default: -march=native), or with CALDER_PORTABLE=ON
-// "baseline" plus, on x86-64, "x86v3" (AVX2 + FMA) and "x86v4" (AVX-512F).
+// "baseline" plus, on x86-64, "x86v3" (AVX2 + FMA) and "x86v4" (AVX-512F);
+// src/kernel_level.hpp chooses among them.
+#include <string_view>
+#include <utility>
+
 #include "../kernel_level.hpp"
+#include "calder_kernel_variants.hpp"
 #include "kernels.hpp"
 
 namespace calder::nbody::detail {
 
-#if defined(CALDER_NBODY_HAS_native)
-const KernelTable& kernel_table_native();
-#endif
-#if defined(CALDER_NBODY_HAS_baseline)
-const KernelTable& kernel_table_baseline();
-#endif
-#if defined(CALDER_NBODY_HAS_x86v3)
-const KernelTable& kernel_table_x86v3();
-#endif
-#if defined(CALDER_NBODY_HAS_x86v4)
-const KernelTable& kernel_table_x86v4();
-#endif
+#define CALDER_NBODY_DECLARE(variant) const KernelTable& kernel_table_##variant();
+CALDER_KERNEL_VARIANTS(CALDER_NBODY_DECLARE)
 
 namespace {
 
+#define CALDER_NBODY_CANDIDATE(variant) \
+  std::pair<std::string_view, const KernelTable*>{#variant, &kernel_table_##variant()},
+
 const KernelTable& choose() {
-#if defined(CALDER_NBODY_HAS_native)
-  return kernel_table_native();
-#else
-  [[maybe_unused]] const int level = calder::detail::kernel_level();
-#if defined(CALDER_NBODY_HAS_x86v4)
-  if (level >= 3) return kernel_table_x86v4();
-#endif
-#if defined(CALDER_NBODY_HAS_x86v3)
-  if (level >= 2) return kernel_table_x86v3();
-#endif
-  return kernel_table_baseline();
-#endif
+  const std::pair<std::string_view, const KernelTable*> compiled[] = {
+      CALDER_KERNEL_VARIANTS(CALDER_NBODY_CANDIDATE)};
+  return *calder::detail::best_variant(compiled);
 }
 
 }  // namespace

@@ -1,15 +1,36 @@
 // SPDX-License-Identifier: MIT
-// calder::nbody::install(): the fast methods of MutualAttraction
+// calder::nbody and the World: the kernels' options for a core attraction
+// law (options_for), and install(), the fast methods of MutualAttraction
 // (NBodyMethod::direct, NBodyMethod::barnes_hut) through the core's hook
 // (calder/fields.hpp, set_mutual_attraction_backend).
 #include <span>
 
+#include "calder/error.hpp"
 #include "calder/fields.hpp"
 #include "calder/nbody.hpp"
 
 namespace calder::nbody {
 
-namespace {
+Options options_for(const AttractionLaw& law) {
+  if (law.custom) {
+    throw Error("nbody::options_for: a custom force law has no n-body kernel");
+  }
+  if (!law.inverse_square()) {
+    throw Error(
+        "nbody::options_for: the n-body kernels support the inverse-square law only (got "
+        "exponent " +
+        calder::detail::format_number(law.exponent) + ", repulsion " +
+        calder::detail::format_number(law.repulsion) + ")");
+  }
+  law.validate("nbody::options_for");
+  Options o;
+  o.G = law.G;
+  o.law = law.clamp;  // the same enum (nbody::Law)
+  o.softening = law.softening;
+  o.min_distance = law.min;
+  o.max_distance = law.max;
+  return o;
+}
 
 // The core has added the central body's pulls; this adds the pairs'.
 void mutual_attraction(const MutualAttraction& field, const FieldContext& context,
@@ -29,8 +50,6 @@ void mutual_attraction(const MutualAttraction& field, const FieldContext& contex
     direct_accelerations(b.x, b.y, b.mass, ax, ay, options);
   }
 }
-
-}  // namespace
 
 void install() { set_mutual_attraction_backend(mutual_attraction); }
 
