@@ -1049,8 +1049,8 @@ std::string utc_now() {
 std::vector<std::pair<std::string, std::string>> machine(const Plan& plan) {
   std::string kernels =
       std::string("n-body ") + nb::kernel_name() + ", movers " + movers::kernel_name();
-  if (const char* forced = std::getenv("CALDER_NBODY_KERNELS")) {
-    kernels += std::string(" (CALDER_NBODY_KERNELS=") + forced + ")";
+  if (const char* forced = std::getenv("CALDER_KERNELS")) {
+    kernels += std::string(" (CALDER_KERNELS=") + forced + ")";
   }
   const std::string busy = busy_cpus(plan.quick ? 0.1 : 0.5);
   std::string build = CALDER_BUILD_TYPE;

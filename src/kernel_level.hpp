@@ -15,11 +15,11 @@ namespace calder::detail {
 // 1: baseline, 2: AVX2 + FMA (x86v3), 3: AVX-512F (x86v4).
 //
 // The best level this CPU supports, capped by the environment variable
-// CALDER_NBODY_KERNELS=avx512|avx2|baseline (benchmarks force the AVX2
+// CALDER_KERNELS=avx512|avx2|baseline (benchmarks force the AVX2
 // kernels on an AVX-512 machine with it; it names both libraries' kernels).
 inline int kernel_level() {
   int level = 3;
-  if (const char* env = std::getenv("CALDER_NBODY_KERNELS")) {
+  if (const char* env = std::getenv("CALDER_KERNELS")) {
     if (std::strcmp(env, "baseline") == 0) level = 1;
     if (std::strcmp(env, "avx2") == 0) level = 2;
   }

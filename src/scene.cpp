@@ -287,7 +287,7 @@ void Simulation::handle_press(Vec2 mouse) {
     auto& attractor = std::get<Attractor>(world_.field(k));
     // The book's handlePress: grab when the press is within `mass` pixels.
     if (mouse.dist(attractor.position) < attractor.mass) {
-      drags_.push_back({k, attractor.position - mouse});
+      grabs_.push_back({k, attractor.position - mouse});
     }
   }
 }
@@ -300,12 +300,12 @@ void Simulation::step(const InputState& input) {
     // p5 fires mouseDragged only when the mouse moves; the attractor stays put
     // to the bit otherwise.
     const bool moved = input.mouse != last_mouse_;
-    for (const Drag& d : drags_) {
+    for (const Grab& d : grabs_) {
       if (!moved) break;
       std::get<Attractor>(world_.field(d.field)).position = input.mouse + d.offset;
     }
   } else {
-    drags_.clear();
+    grabs_.clear();
     tossed_.reset();  // released: the body keeps the mouse's last velocity
   }
   const Vec2 mouse_velocity = (input.mouse - last_mouse_) / world_.dt();

@@ -54,21 +54,21 @@ World::World(const WorldDef& def) : def_(def), random_(def.seed), noise_(def.see
   def.boundary.validate("World");
   detail::require_non_negative(def.max_speed, "World", "max_speed");
   if (def.threads < 0) {
-    throw Error("World: threads must be >= 0 (got " + std::to_string(def.threads) + ")");
+    throw InvalidArgument("World: threads must be >= 0 (got " + std::to_string(def.threads) + ")");
   }
 }
 
 std::size_t World::checked(BodyId id, const char* where) const {
   if (id.index >= bodies_.x.size()) {
-    throw Error(std::string(where) + ": no body with id " + std::to_string(id.index) +
-                world_has(bodies_.x.size(), "body", "bodies"));
+    throw InvalidArgument(std::string(where) + ": no body with id " + std::to_string(id.index) +
+                          world_has(bodies_.x.size(), "body", "bodies"));
   }
   return id.index;
 }
 
 BodyId World::add_body(const BodyDef& def) {
   def.validate("World::add_body");
-  if (bodies_.x.size() >= UINT32_MAX) throw Error("World::add_body: too many bodies");
+  if (bodies_.x.size() >= UINT32_MAX) throw InvalidArgument("World::add_body: too many bodies");
   const BodyId id{static_cast<std::uint32_t>(bodies_.x.size())};
   append(def);
   return id;
@@ -109,7 +109,7 @@ double value_at(std::span<const double> column, std::size_t i, double fallback) 
 
 BodyId World::add_bodies(const BodyColumns& columns) {
   if (!columns.ax.empty() || !columns.ay.empty()) {
-    throw Error("World::add_bodies: ax and ay are not inputs (accelerations start at 0)");
+    throw InvalidArgument("World::add_bodies: ax and ay are not inputs (accelerations start at 0)");
   }
   std::size_t n = 0;
   for_each_column([&n](const char*, std::span<const double> c) { n = std::max(n, c.size()); },
@@ -117,9 +117,9 @@ BodyId World::add_bodies(const BodyColumns& columns) {
   for_each_column(
       [n](const char* name, std::span<const double> column) {
         if (column.size() > 1 && column.size() != n) {
-          throw Error(std::string("World::add_bodies: ") + name + " has " +
-                      std::to_string(column.size()) + " values, expected " + std::to_string(n) +
-                      ", 1 or none");
+          throw InvalidArgument(std::string("World::add_bodies: ") + name + " has " +
+                                std::to_string(column.size()) + " values, expected " +
+                                std::to_string(n) + ", 1 or none");
         }
       },
       columns);
@@ -132,11 +132,11 @@ BodyId World::add_bodies(const BodyColumns& columns) {
     try {
       body_of(row).validate("World::add_body");
     } catch (const Error& e) {
-      throw Error("World::add_bodies: body " + std::to_string(i) + ": " + e.what());
+      rethrow_with_context(e, "World::add_bodies: body " + std::to_string(i) + ": ");
     }
   }
   const std::size_t count = body_count();
-  if (n > UINT32_MAX - count) throw Error("World::add_bodies: too many bodies");
+  if (n > UINT32_MAX - count) throw InvalidArgument("World::add_bodies: too many bodies");
   const BodyId first{static_cast<std::uint32_t>(count)};
   // Room once for the batch, still geometric so that many small batches stay linear.
   const std::size_t room = std::max(count + n, 2 * count);
@@ -169,8 +169,8 @@ Mover World::mover(BodyId id) {
 
 BodyId World::body(std::size_t index) const {
   if (index >= bodies_.x.size()) {
-    throw Error("World::body: index " + std::to_string(index) + " out of range" +
-                world_has(bodies_.x.size(), "body", "bodies"));
+    throw InvalidArgument("World::body: index " + std::to_string(index) + " out of range" +
+                          world_has(bodies_.x.size(), "body", "bodies"));
   }
   return BodyId{static_cast<std::uint32_t>(index)};
 }
@@ -241,9 +241,10 @@ void World::apply_force(BodyId id, Vec2 force) {
   const double ax = bodies_.ax[i] + force.x / bodies_.mass[i];
   const double ay = bodies_.ay[i] + force.y / bodies_.mass[i];
   if (!std::isfinite(ax) || !std::isfinite(ay)) {
-    throw Error("World::apply_force: force (" + detail::format_number(force.x) + ", " +
-                detail::format_number(force.y) + ") on body " + std::to_string(i) + " of mass " +
-                detail::format_number(bodies_.mass[i]) + " gives a non-finite acceleration");
+    throw InvalidArgument("World::apply_force: force (" + detail::format_number(force.x) + ", " +
+                          detail::format_number(force.y) + ") on body " + std::to_string(i) +
+                          " of mass " + detail::format_number(bodies_.mass[i]) +
+                          " gives a non-finite acceleration");
   }
   bodies_.ax[i] = ax;
   bodies_.ay[i] = ay;
@@ -259,8 +260,8 @@ void World::update(BodyId id) {
   double ay = bodies_.ay[i];
   detail::book_update(x, y, vx, vy, ax, ay, def_.dt, def_.max_speed);
   if (!std::isfinite(x) || !std::isfinite(y) || !std::isfinite(vx) || !std::isfinite(vy)) {
-    throw Error("World::update: body " + std::to_string(i) +
-                " would get a non-finite position or velocity (overflow); left unchanged");
+    throw RunError("World::update: body " + std::to_string(i) +
+                   " would get a non-finite position or velocity (overflow); left unchanged");
   }
   bodies_.x[i] = x;
   bodies_.y[i] = y;
@@ -372,12 +373,12 @@ void World::check_finite(const char* where) const {
   for (std::size_t i = 0; i < bodies_.x.size(); ++i) {
     if (!std::isfinite(bodies_.x[i]) || !std::isfinite(bodies_.y[i]) ||
         !std::isfinite(bodies_.vx[i]) || !std::isfinite(bodies_.vy[i])) {
-      throw Error(std::string(where) + ": body " + std::to_string(i) +
-                  " has a non-finite position or velocity after step " +
-                  std::to_string(step_count_ + 1) + " (x " + detail::format_number(bodies_.x[i]) +
-                  ", y " + detail::format_number(bodies_.y[i]) + ", vx " +
-                  detail::format_number(bodies_.vx[i]) + ", vy " +
-                  detail::format_number(bodies_.vy[i]) + ")");
+      throw RunError(
+          std::string(where) + ": body " + std::to_string(i) +
+          " has a non-finite position or velocity after step " + std::to_string(step_count_ + 1) +
+          " (x " + detail::format_number(bodies_.x[i]) + ", y " +
+          detail::format_number(bodies_.y[i]) + ", vx " + detail::format_number(bodies_.vx[i]) +
+          ", vy " + detail::format_number(bodies_.vy[i]) + ")");
     }
   }
 }
@@ -386,15 +387,15 @@ Field& World::add_field(Field field) {
   try {
     validate(field);
   } catch (const Error& e) {
-    throw Error(std::string("World::add: ") + e.what());
+    rethrow_with_context(e, "World::add: ");
   }
   return fields_.emplace_back(std::move(field));
 }
 
 Field& World::field(std::size_t index) {
   if (index >= fields_.size()) {
-    throw Error("World::field: index " + std::to_string(index) + " out of range" +
-                world_has(fields_.size(), "field", "fields"));
+    throw InvalidArgument("World::field: index " + std::to_string(index) + " out of range" +
+                          world_has(fields_.size(), "field", "fields"));
   }
   return fields_[index];
 }
@@ -423,7 +424,8 @@ Backends Backends::or_defaults() const {
 
 void World::set_threads(int threads) {
   if (threads < 0) {
-    throw Error("World::set_threads: threads must be >= 0 (got " + std::to_string(threads) + ")");
+    throw InvalidArgument("World::set_threads: threads must be >= 0 (got " +
+                          std::to_string(threads) + ")");
   }
   def_.threads = threads;
 }
@@ -433,19 +435,20 @@ void World::check_step_settings() const {
     try {
       validate(field);
     } catch (const Error& e) {
-      throw Error(std::string("World::step: ") + e.what());
+      rethrow_with_context(e, "World::step: ");
     }
   }
   if (def_.max_speed > 0.0 && def_.integrator != Integrator::semi_implicit_euler) {
-    throw Error("World::step: max_speed needs the semi_implicit_euler integrator");
+    throw InvalidArgument("World::step: max_speed needs the semi_implicit_euler integrator");
   }
   if (def_.update_order == UpdateOrder::sequential &&
       def_.integrator != Integrator::semi_implicit_euler) {
-    throw Error(
+    throw InvalidArgument(
         "World::step: the sequential update order needs the semi_implicit_euler integrator");
   }
   if (def_.threads < 0) {
-    throw Error("World::step: threads must be >= 0 (got " + std::to_string(def_.threads) + ")");
+    throw InvalidArgument("World::step: threads must be >= 0 (got " + std::to_string(def_.threads) +
+                          ")");
   }
 }
 
@@ -495,27 +498,29 @@ std::string World::needs_plain_loops() const {
 }
 
 void World::step(int count) {
-  if (count < 0) throw Error("World::step: count must be >= 0 (got " + std::to_string(count) + ")");
+  if (count < 0)
+    throw InvalidArgument("World::step: count must be >= 0 (got " + std::to_string(count) + ")");
   if (count == 0) return;
   const bool book = def_.arithmetic == Arithmetic::book;
   const std::string plain_only = needs_plain_loops();
   if (!book && !plain_only.empty()) {
-    throw Error(std::string("World::step: arithmetic ") +
-                std::string(arithmetic_name(def_.arithmetic)) + " has no kernel for " + plain_only);
+    throw InvalidArgument(std::string("World::step: arithmetic ") +
+                          std::string(arithmetic_name(def_.arithmetic)) + " has no kernel for " +
+                          plain_only);
   }
   const StepBatchBackend backend = def_.backends.or_defaults().step_batch;
   const bool batchable = def_.integrator == Integrator::semi_implicit_euler &&
                          def_.update_order == UpdateOrder::simultaneous && backend != nullptr &&
                          plain_only.empty();
   if (!book && !batchable) {
-    throw Error(std::string("World::step: arithmetic ") +
-                std::string(arithmetic_name(def_.arithmetic)) +
-                (backend == nullptr
-                     ? " needs calder::movers (link calder::movers and set WorldDef::backends."
-                       "step_batch = calder::movers::step_batch, or call "
-                       "calder::movers::install())"
-                     : " needs the semi_implicit_euler integrator and the simultaneous update "
-                       "order"));
+    throw InvalidArgument(
+        std::string("World::step: arithmetic ") + std::string(arithmetic_name(def_.arithmetic)) +
+        (backend == nullptr
+             ? " needs calder::movers (link calder::movers and set WorldDef::backends."
+               "step_batch = calder::movers::step_batch, or call "
+               "calder::movers::install())"
+             : " needs the semi_implicit_euler integrator and the simultaneous update "
+               "order"));
   }
   const auto body_steps = static_cast<std::int64_t>(bodies_.x.size()) * count;
   if (batchable && (!book || body_steps >= kBatchMinBodySteps)) {
@@ -557,9 +562,9 @@ bool World::step_batch(int steps) {
   const bool ran = backend(batch, &why_not);
   if (!ran) {
     if (book) return false;
-    throw Error(std::string("World::step: arithmetic ") +
-                std::string(arithmetic_name(def_.arithmetic)) +
-                " needs a kernel for every field: " + why_not);
+    throw InvalidArgument(std::string("World::step: arithmetic ") +
+                          std::string(arithmetic_name(def_.arithmetic)) +
+                          " needs a kernel for every field: " + why_not);
   }
   if (first_non_finite < n) {
     const std::size_t i = first_non_finite;
@@ -573,11 +578,11 @@ bool World::step_batch(int steps) {
       assert(false && "calder::movers' book kernels went non-finite where the plain loops did not");
       return true;
     }
-    throw Error("World::step: body " + std::to_string(i) +
-                " got a non-finite position or velocity within steps " +
-                std::to_string(step_count_ + 1) + " to " + std::to_string(step_count_ + steps) +
-                " (arithmetic " + std::string(arithmetic_name(def_.arithmetic)) +
-                "); the world is left as it was after step " + std::to_string(step_count_));
+    throw RunError("World::step: body " + std::to_string(i) +
+                   " got a non-finite position or velocity within steps " +
+                   std::to_string(step_count_ + 1) + " to " + std::to_string(step_count_ + steps) +
+                   " (arithmetic " + std::string(arithmetic_name(def_.arithmetic)) +
+                   "); the world is left as it was after step " + std::to_string(step_count_));
   }
   for (int k = 0; k < steps; ++k) time_ += def_.dt;
   step_count_ += steps;

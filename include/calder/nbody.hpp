@@ -193,7 +193,7 @@ void install();
 
 // The instruction set of the kernels in use: "avx512", "avx2+fma", "sse2",
 // "generic". A build with CALDER_PORTABLE=ON holds several and picks the
-// best the CPU supports (the environment variable CALDER_NBODY_KERNELS=
+// best the CPU supports (the environment variable CALDER_KERNELS=
 // avx512|avx2|baseline, read once, lowers the choice, for benchmarks).
 const char* kernel_name();
 // The number of threads that threads = 0 means (1 without OpenMP).

@@ -197,7 +197,8 @@ class Simulation {
   [[nodiscard]] std::int64_t frame() const { return frame_; }
 
  private:
-  struct Drag {
+  // An attractor held by the mouse (not calder::Drag, the fluid-drag field).
+  struct Grab {
     std::size_t field = 0;
     Vec2 offset{};
   };
@@ -210,7 +211,7 @@ class Simulation {
   Vec2 last_mouse_{};
   std::optional<std::size_t> tossed_;  // the body held by the mouse (PressAction::toss)
   Vec2 toss_offset_{};
-  std::vector<Drag> drags_;
+  std::vector<Grab> grabs_;
 };
 
 // --- built-in scenes: every example of the chapter ---

@@ -18,9 +18,9 @@ namespace calder {
 
 // A scene file that can't be read or doesn't describe a valid scene.
 // what() is one line: "FILE:LINE:COLUMN: problem" (or "FILE: problem").
-class SceneFileError : public Error {
+class SceneFileError : public InputError {
  public:
-  using Error::Error;
+  using InputError::InputError;
 };
 
 // Reads and validates a scene file.

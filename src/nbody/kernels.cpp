@@ -2,7 +2,7 @@
 // calder::nbody: the pair-sum kernels (see kernels.hpp).
 //
 // This file is compiled once per instruction-set variant (CMakeLists.txt,
-// calder_nbody): CALDER_NBODY_VARIANT names the variant and the function
+// calder_nbody): CALDER_KERNEL_VARIANT names the variant and the function
 // kernel_table_<variant>() that dispatch.cpp calls. It is the only code of
 // calder built with -O3, -march=... and -ffp-contract=fast (fused multiply-
 // adds): none of the book-fidelity code goes through it.
@@ -25,8 +25,8 @@
 #include <immintrin.h>
 #endif
 
-#ifndef CALDER_NBODY_VARIANT
-#error "CALDER_NBODY_VARIANT must name the variant (set by CMakeLists.txt)"
+#ifndef CALDER_KERNEL_VARIANT
+#error "CALDER_KERNEL_VARIANT must name the variant (set by CMakeLists.txt)"
 #endif
 
 #define CALDER_NBODY_CAT2(a, b) a##b
@@ -546,7 +546,7 @@ void accumulate_multipole(const T* tx, const T* ty, std::size_t nt, const Nodes<
 
 }  // namespace
 
-const KernelTable& CALDER_NBODY_CAT(kernel_table_, CALDER_NBODY_VARIANT)() {
+const KernelTable& CALDER_NBODY_CAT(kernel_table_, CALDER_KERNEL_VARIANT)() {
   static const KernelTable table{kName,
                                  kBlockVectors64 * kLanes<VD>,
                                  kBlockVectors32 * kLanes<VF>,
