@@ -362,3 +362,22 @@ TEST(CliMain, RuntimeFailureExits1) {
   EXPECT_EQ(r.err.rfind("calder: example-2.8: frame 1: ", 0), 0u) << r.err;
   EXPECT_EQ(dir.entries(), std::vector<std::string>{"state.csv"});
 }
+
+// main keeps one parser for the process: no flag of an earlier call, whole
+// or cut short by an error, carries over to the next.
+TEST(CliMain, EachCallStartsFromTheDefaults) {
+  ASSERT_EQ(cli({"run", "example-2.7", "--frames", "50", "--seed", "4"}).status, 0);
+  EXPECT_EQ(cli({"run", "example-2.7", "--frames", "7", "--seed", "9", "--no-such-flag"}).status,
+            2);
+  const Result r = cli({"run", "example-2.7", "--frames", "3"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  calder::Simulation sim(calder::builtin_scene("example-2.7"));
+  for (int i = 0; i < 3; ++i) sim.step();
+  char hash[17];
+  std::snprintf(hash, sizeof hash, "%016llx",
+                static_cast<unsigned long long>(calder::state_hash(sim.world())));
+  EXPECT_NE(r.out.find(std::string("state hash        ") + hash + "\n"), std::string::npos)
+      << r.out;
+  EXPECT_NE(r.out.find("frames            3\n"), std::string::npos) << r.out;
+  EXPECT_EQ(cli({"list", "--frames"}).status, 2);  // `run`'s flags stay with `run`
+}
