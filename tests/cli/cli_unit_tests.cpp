@@ -5,11 +5,13 @@
 #include <sys/stat.h>
 
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <functional>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -339,16 +341,24 @@ TEST(CliMain, NegativeFramesReachTheRangeCheck) {
   EXPECT_EQ(r.err, "calder: --frames: expected an integer from 0 to 10000000, got '-1'\n");
 }
 
-TEST(CliMain, SummaryHashEqualsTheWorldsHash) {
-  const Result r = cli({"run", "example-2.7", "--frames", "50", "--seed", "4"});
-  ASSERT_EQ(r.status, 0) << r.err;
-  calder::Simulation sim(calder::builtin_scene("example-2.7"), 4u);
-  for (int i = 0; i < 50; ++i) sim.step();
+namespace {
+
+// The summary's "state hash" line of a built-in scene run here for `frames`.
+std::string hash_line(const std::string& scene, int frames, std::optional<std::uint32_t> seed) {
+  calder::Simulation sim(calder::builtin_scene(scene), seed);
+  for (int i = 0; i < frames; ++i) sim.step();
   char hash[17];
   std::snprintf(hash, sizeof hash, "%016llx",
                 static_cast<unsigned long long>(calder::state_hash(sim.world())));
-  EXPECT_NE(r.out.find(std::string("state hash        ") + hash + "\n"), std::string::npos)
-      << r.out;
+  return std::string("state hash        ") + hash + "\n";
+}
+
+}  // namespace
+
+TEST(CliMain, SummaryHashEqualsTheWorldsHash) {
+  const Result r = cli({"run", "example-2.7", "--frames", "50", "--seed", "4"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find(hash_line("example-2.7", 50, 4u)), std::string::npos) << r.out;
 }
 
 TEST(CliMain, RuntimeFailureExits1) {
@@ -371,13 +381,7 @@ TEST(CliMain, EachCallStartsFromTheDefaults) {
             2);
   const Result r = cli({"run", "example-2.7", "--frames", "3"});
   ASSERT_EQ(r.status, 0) << r.err;
-  calder::Simulation sim(calder::builtin_scene("example-2.7"));
-  for (int i = 0; i < 3; ++i) sim.step();
-  char hash[17];
-  std::snprintf(hash, sizeof hash, "%016llx",
-                static_cast<unsigned long long>(calder::state_hash(sim.world())));
-  EXPECT_NE(r.out.find(std::string("state hash        ") + hash + "\n"), std::string::npos)
-      << r.out;
+  EXPECT_NE(r.out.find(hash_line("example-2.7", 3, std::nullopt)), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("frames            3\n"), std::string::npos) << r.out;
   EXPECT_EQ(cli({"list", "--frames"}).status, 2);  // `run`'s flags stay with `run`
 }
