@@ -5,12 +5,14 @@
 #include <sys/stat.h>
 
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <functional>
 #include <new>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -342,16 +344,24 @@ TEST(CliMain, NegativeFramesReachTheRangeCheck) {
   EXPECT_EQ(r.err, "calder: --frames: expected an integer from 0 to 10000000, got '-1'\n");
 }
 
-TEST(CliMain, SummaryHashEqualsTheWorldsHash) {
-  const Result r = cli({"run", "example-2.7", "--frames", "50", "--seed", "4"});
-  ASSERT_EQ(r.status, 0) << r.err;
-  calder::Simulation sim(calder::builtin_scene("example-2.7"), 4u);
-  for (int i = 0; i < 50; ++i) sim.step();
+namespace {
+
+// The summary's "state hash" line of a built-in scene run here for `frames`.
+std::string hash_line(const std::string& scene, int frames, std::optional<std::uint32_t> seed) {
+  calder::Simulation sim(calder::builtin_scene(scene), seed);
+  for (int i = 0; i < frames; ++i) sim.step();
   char hash[17];
   std::snprintf(hash, sizeof hash, "%016llx",
                 static_cast<unsigned long long>(calder::state_hash(sim.world())));
-  EXPECT_NE(r.out.find(std::string("state hash        ") + hash + "\n"), std::string::npos)
-      << r.out;
+  return std::string("state hash        ") + hash + "\n";
+}
+
+}  // namespace
+
+TEST(CliMain, SummaryHashEqualsTheWorldsHash) {
+  const Result r = cli({"run", "example-2.7", "--frames", "50", "--seed", "4"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find(hash_line("example-2.7", 50, 4u)), std::string::npos) << r.out;
 }
 
 TEST(CliMain, RuntimeFailureExits1) {
@@ -403,4 +413,17 @@ TEST(CliRunCli, AStepFailureIsARunFailureNamingSourceAndFrame) {
   } catch (const calder::RunError& e) {
     EXPECT_STREQ(e.what(), "rain: frame 12: body 2 is NaN");
   }
+}
+
+// main keeps one parser for the process: no flag of an earlier call, whole
+// or cut short by an error, carries over to the next.
+TEST(CliMain, EachCallStartsFromTheDefaults) {
+  ASSERT_EQ(cli({"run", "example-2.7", "--frames", "50", "--seed", "4"}).status, 0);
+  EXPECT_EQ(cli({"run", "example-2.7", "--frames", "7", "--seed", "9", "--no-such-flag"}).status,
+            2);
+  const Result r = cli({"run", "example-2.7", "--frames", "3"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find(hash_line("example-2.7", 3, std::nullopt)), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("frames            3\n"), std::string::npos) << r.out;
+  EXPECT_EQ(cli({"list", "--frames"}).status, 2);  // `run`'s flags stay with `run`
 }
