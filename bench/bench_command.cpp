@@ -23,7 +23,7 @@
 #include <utility>
 #include <vector>
 
-#include "calder/movers.hpp"
+#include "calder/bulk.hpp"
 #include "calder/nbody.hpp"
 #include "calder/world.hpp"
 #include "errors.hpp"
@@ -497,13 +497,13 @@ Section nbody_section(const Plan& plan, Runner& runner, Results& results) {
 class PlainLoops {
  public:
   PlainLoops() { set_step_batch_backend(nullptr); }
-  ~PlainLoops() { movers::install(); }
+  ~PlainLoops() { bulk::install(); }
   PlainLoops(const PlainLoops&) = delete;
   PlainLoops& operator=(const PlainLoops&) = delete;
 };
 
 Section movers_section(const Plan& plan, Runner& runner, Results& results) {
-  movers::install();
+  bulk::install();
   Section section;
   section.title = "movers, the rain scene: body-steps per second";
   Table table;
@@ -511,7 +511,7 @@ Section movers_section(const Plan& plan, Runner& runner, Results& results) {
                    ">body-steps/s", ">vs Box2D", ">vs floor",  "note"};
   // The floor's copy for the movers' instruction set: AVX2 + FMA alone when
   // the movers run their AVX2 kernels, else -march=native.
-  const bool avx2 = std::string(movers::kernel_name()) == "avx2+fma";
+  const bool avx2 = std::string(bulk::kernel_name()) == "avx2+fma";
   std::string floor_flags;
 
   for (const std::size_t n : plan.movers_n) {
@@ -611,9 +611,9 @@ Section movers_section(const Plan& plan, Runner& runner, Results& results) {
       "collisions; the canvas grows with N so that the density stays that of 1000 drops on "
       "640 x 240.",
       std::string("calder movers: World::step(") + std::to_string(World::kBatchSteps) +
-          ") through calder::movers' " + movers::kernel_name() +
+          ") through calder::bulk's " + bulk::kernel_name() +
           " kernels; book is bit-identical to the plain loops, float64 and float32 trade the "
-          "last bits for speed (calder/movers.hpp). plain loops: the same world stepped body by "
+          "last bits for speed (calder/bulk.hpp). plain loops: the same world stepped body by "
           "body by calder's core.",
       "floor: the rain physics as the plain structure-of-arrays loop anyone would write "
       "(bench/peers/soa_rain_loop.cpp: one pass over the arrays per step, branch-free, "
@@ -1048,7 +1048,7 @@ std::string utc_now() {
 
 std::vector<std::pair<std::string, std::string>> machine(const Plan& plan) {
   std::string kernels =
-      std::string("n-body ") + nb::kernel_name() + ", movers " + movers::kernel_name();
+      std::string("n-body ") + nb::kernel_name() + ", movers " + bulk::kernel_name();
   if (const char* forced = std::getenv("CALDER_KERNELS")) {
     kernels += std::string(" (CALDER_KERNELS=") + forced + ")";
   }
@@ -1062,7 +1062,7 @@ std::vector<std::pair<std::string, std::string>> machine(const Plan& plan) {
        cpu_model() + ", " + std::to_string(std::thread::hardware_concurrency()) + " logical cores"},
       {"kernels", kernels},
       {"threads", "OpenMP max threads " + std::to_string(nb::max_threads()) + " (n-body), " +
-                      std::to_string(movers::max_threads()) + " (movers)"},
+                      std::to_string(bulk::max_threads()) + " (movers)"},
       {"compiler", compiler() + ", build type " + build},
       {"date", utc_now() + "; at the start: " + (busy.empty() ? "" : "CPUs " + busy + ", ") +
                    "load average " + load_average()},

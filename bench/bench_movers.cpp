@@ -5,7 +5,7 @@
 // density stays that of the scene; items_per_second is body-steps per second.
 //
 //   Calder/N/arithmetic/threads  World::step(World::kBatchSteps) through
-//                                calder::movers (arithmetic 0 book, 1 float64,
+//                                calder::bulk (arithmetic 0 book, 1 float64,
 //                                2 float32)
 //   CalderPlain/N                the same world stepped by the plain loops
 //                                (no kernels: the book's loop in C++)
@@ -22,14 +22,14 @@
 #include <cstdint>
 #include <string>
 
-#include "calder/movers.hpp"
+#include "calder/bulk.hpp"
 #include "peers/rain_world.hpp"
 #include "peers/soa_rain.hpp"
 
 namespace {
 
 void Calder(benchmark::State& state) {
-  calder::movers::install();
+  calder::bulk::install();
   const auto n = static_cast<std::size_t>(state.range(0));
   calder::World world = calder::peers::rain_world(
       n, static_cast<calder::Arithmetic>(state.range(1)), static_cast<int>(state.range(2)));
@@ -50,13 +50,13 @@ void CalderPlain(benchmark::State& state) {
     benchmark::DoNotOptimize(world.bodies().x.data());
   }
   state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(n));
-  calder::movers::install();
+  calder::bulk::install();
 }
 
 void SoaFloor(benchmark::State& state) {
-  calder::movers::install();
+  calder::bulk::install();
   const auto n = static_cast<std::size_t>(state.range(0));
-  const bool avx2 = std::string(calder::movers::kernel_name()) == "avx2+fma";
+  const bool avx2 = std::string(calder::bulk::kernel_name()) == "avx2+fma";
   calder::peers::SoaRain soa(calder::peers::rain_world(n), state.range(1) != 0, avx2,
                              static_cast<int>(state.range(2)));
   for (auto _ : state) soa.step(calder::World::kBatchSteps);

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 // Internal: the book's update for one body, shared by World::update, the
-// whole-world semi-implicit Euler step and calder::movers' kernels so that
+// whole-world semi-implicit Euler step and calder::bulk's kernels so that
 // all give the same bits; and the periodic wrap of a coordinate.
 #pragma once
 
@@ -10,7 +10,7 @@
 
 namespace calder::detail {
 
-// Internal linkage: calder::movers' kernels include this file in translation
+// Internal linkage: calder::bulk's kernels include this file in translation
 // units built with other flags (-march, -ffp-contract=fast); an inline
 // function shared across them could be merged by the linker into the core's
 // calls and change its bits, or its instruction set.
@@ -18,14 +18,14 @@ namespace {
 
 // velocity += acceleration * dt; position += velocity * dt; acceleration = 0.
 // With dt = 1 the products are exact, so this is p5's vel.add(acc); pos.add(vel).
-// (A template so that calder::movers' float32 kernels share it.)
+// (A template so that calder::bulk's float32 kernels share it.)
 template <class Real>
 inline void kick_drift(Real& x, Real& y, Real& vx, Real& vy, Real& ax, Real& ay, Real dt) {
   vx += ax * dt;
   vy += ay * dt;
   x += vx * dt;
   y += vy * dt;
-  ax = Real{};  // zero (also for calder::movers' vector types)
+  ax = Real{};  // zero (also for calder::bulk's vector types)
   ay = Real{};
 }
 

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 // Internal: which instruction-set variant of the kernel files (calder::nbody,
-// calder::movers) a portable build (CALDER_PORTABLE=ON) should run, decided
+// calder::bulk) a portable build (CALDER_PORTABLE=ON) should run, decided
 // once by both libraries' dispatch.cpp in the same way.
 #pragma once
 

@@ -516,9 +516,9 @@ void World::step(int count) {
     throw InvalidArgument(
         std::string("World::step: arithmetic ") + std::string(arithmetic_name(def_.arithmetic)) +
         (backend == nullptr
-             ? " needs calder::movers (link calder::movers and set WorldDef::backends."
-               "step_batch = calder::movers::step_batch, or call "
-               "calder::movers::install())"
+             ? " needs calder::bulk (link calder::bulk and set WorldDef::backends."
+               "step_batch = calder::bulk::step_batch, or call "
+               "calder::bulk::install())"
              : " needs the semi_implicit_euler integrator and the simultaneous update "
                "order"));
   }
@@ -575,7 +575,7 @@ bool World::step_batch(int steps) {
       for (int k = 0; k < steps; ++k) step_one();
       // The plain loops went through: the kernels disagreed with them, a bug
       // the result no longer shows; debug builds (the sanitizer CI) say so.
-      assert(false && "calder::movers' book kernels went non-finite where the plain loops did not");
+      assert(false && "calder::bulk's book kernels went non-finite where the plain loops did not");
       return true;
     }
     throw RunError("World::step: body " + std::to_string(i) +

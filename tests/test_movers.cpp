@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// Tests of calder::movers (calder/movers.hpp), the whole-world kernels behind
+// Tests of calder::bulk (calder/bulk.hpp), the whole-world kernels behind
 // World::step(count): book arithmetic against the plain per-body loops bit for
 // bit (every supported field, boundary and dt, a partial last batch, ragged
 // tiles), the built-in scenes, results independent of the thread count, the
@@ -19,11 +19,11 @@
 #include <string>
 #include <vector>
 
+#include "calder/bulk.hpp"
 #include "calder/diagnostics.hpp"
 #include "calder/error.hpp"
 #include "calder/fields.hpp"
 #include "calder/forces.hpp"
-#include "calder/movers.hpp"
 #include "calder/random.hpp"
 #include "calder/scene.hpp"
 #include "calder/step_batch.hpp"
@@ -59,8 +59,8 @@ using calder::WorldDef;
 // (here and elsewhere) unregister them to get the plain loops.
 class MoversTest : public ::testing::Test {
  protected:
-  void SetUp() override { calder::movers::install(); }
-  void TearDown() override { calder::movers::install(); }
+  void SetUp() override { calder::bulk::install(); }
+  void TearDown() override { calder::bulk::install(); }
 };
 
 // The plain per-body loops for its lifetime (no batch backend), then the
@@ -68,7 +68,7 @@ class MoversTest : public ::testing::Test {
 class PlainLoops {
  public:
   PlainLoops() { calder::set_step_batch_backend(nullptr); }
-  ~PlainLoops() { calder::movers::install(); }
+  ~PlainLoops() { calder::bulk::install(); }
   PlainLoops(const PlainLoops&) = delete;
   PlainLoops& operator=(const PlainLoops&) = delete;
 };
@@ -90,7 +90,7 @@ struct Outcome {
 };
 
 Outcome run_kernels(const World& start, int count) {
-  calder::movers::install();
+  calder::bulk::install();
   Outcome run{start, ""};
   run.error = step_catching(run.world, count);
   return run;
@@ -445,14 +445,14 @@ const FieldCase kFieldCases[] = {
 
 class MoversBookTest : public ::testing::TestWithParam<FieldCase> {
  protected:
-  void SetUp() override { calder::movers::install(); }
-  void TearDown() override { calder::movers::install(); }
+  void SetUp() override { calder::bulk::install(); }
+  void TearDown() override { calder::bulk::install(); }
 };
 
 TEST_P(MoversBookTest, StepsTheSameBitsAsThePlainLoops) {
   const FieldCase& c = GetParam();
   const World start = random_world(c, 2024);
-  ASSERT_EQ(calder::movers::unsupported(start), "");
+  ASSERT_EQ(calder::bulk::unsupported(start), "");
   // 300 steps: two full batches of kBatchSteps and a partial one.
   static_assert(300 > 2 * World::kBatchSteps && 300 < 3 * World::kBatchSteps);
   const Outcome kernels = run_kernels(start, 300);
@@ -531,7 +531,7 @@ TEST_F(MoversTest, LargeStepsGoToTheBackend) {
   world.step(300);  // declined at the first batch: the loops do the rest
   world.step(7);
   world.step(3);  // 3111 body-steps, under the threshold of 4096: no batch
-  calder::movers::install();
+  calder::bulk::install();
   EXPECT_EQ(recorded_batches, (std::vector<int>{World::kBatchSteps, 7}));
   EXPECT_EQ(world.step_count(), 310);
 }
@@ -554,12 +554,12 @@ TEST_F(MoversTest, BackendsArePerWorld) {
   EXPECT_THROW(plain.step(1), calder::Error);  // no kernels for this world
   calder::WorldDef with_kernels;
   with_kernels.arithmetic = Arithmetic::float64;
-  with_kernels.backends.step_batch = calder::movers::step_batch;
+  with_kernels.backends.step_batch = calder::bulk::step_batch;
   World fast(with_kernels);
   fast.add_bodies(calder::BodyColumns{.x = recorded.bodies().x, .y = recorded.bodies().y});
   fast.add(calder::Gravity{});
   fast.step(10);
-  calder::movers::install();
+  calder::bulk::install();
   EXPECT_EQ(fast.step_count(), 10);
   // Gravity alone from rest: y grows by g (1 + 2 + ... + 10) = 5.5 px.
   EXPECT_NEAR(fast.position(fast.body(0)).y - recorded.position(recorded.body(0)).y, 5.5, 1e-12);
@@ -574,7 +574,7 @@ TEST_F(MoversTest, BuiltinScenesStepTheSameBitsThroughTheKernels) {
     SCOPED_TRACE(info.name);
     calder::Simulation sim(calder::builtin_scene(info.name), 1);
     World start = sim.world();
-    if (!calder::movers::unsupported(start).empty()) {
+    if (!calder::bulk::unsupported(start).empty()) {
       skipped.push_back(info.name);
       continue;
     }
@@ -677,7 +677,7 @@ TEST_F(MoversTest, FastArithmeticStaysCloseToBook) {
       "[ movers   ] rain, %zu drops, 200 steps (%s): float64 max |dx| %.3g px, max |dv|/v_t "
       "%.3g; float32 max |dx| %.3g px (all but 10 drops: %.3g px), max |dv|/v_t %.3g (all "
       "but 10: %.3g)\n",
-      kDrops, calder::movers::kernel_name(), d64.position_but(0), d64.velocity_but(0),
+      kDrops, calder::bulk::kernel_name(), d64.position_but(0), d64.velocity_but(0),
       d32.position_but(0), d32.position_but(10), d32.velocity_but(0), d32.velocity_but(10));
   // float64 differs from book by rounding only: measured (GCC 12, avx512
   // kernels) 1.4e-13 px, 2.2e-16 of the canvas width, and 2.6e-16 of the
@@ -718,8 +718,8 @@ World custom_force_world(Arithmetic arithmetic) {
 
 TEST_F(MoversTest, CustomForceStepsThroughThePlainLoopsWithBookArithmetic) {
   const World start = custom_force_world(Arithmetic::book);
-  EXPECT_NE(calder::movers::unsupported(start).find("custom_force"), std::string::npos)
-      << calder::movers::unsupported(start);
+  EXPECT_NE(calder::bulk::unsupported(start).find("custom_force"), std::string::npos)
+      << calder::bulk::unsupported(start);
   const Outcome kernels = run_kernels(start, 300);
   const Outcome plain = run_plain(start, 300);
   ASSERT_EQ(kernels.error, "");
@@ -731,28 +731,28 @@ TEST_F(MoversTest, CustomForceStepsThroughThePlainLoopsWithBookArithmetic) {
 TEST_F(MoversTest, UnsupportedNamesWhatTheKernelsLack) {
   World world(WorldDef{});
   world.add_body({.position = {10.0, 10.0}});
-  EXPECT_EQ(calder::movers::unsupported(world), "");
+  EXPECT_EQ(calder::bulk::unsupported(world), "");
   {
     World w = world;
     w.add(calder::MutualAttraction{});
-    EXPECT_NE(calder::movers::unsupported(w).find("mutual_attraction"), std::string::npos);
+    EXPECT_NE(calder::bulk::unsupported(w).find("mutual_attraction"), std::string::npos);
   }
   {
     World w = world;
     AttractionLaw law = AttractionLaw::book();
     law.exponent = 1.0;
     w.add(Attractor{.law = law});
-    EXPECT_NE(calder::movers::unsupported(w).find("attractor"), std::string::npos);
+    EXPECT_NE(calder::bulk::unsupported(w).find("attractor"), std::string::npos);
   }
   {
     World w = world;
     w.set_integrator(calder::Integrator::velocity_verlet);
-    EXPECT_NE(calder::movers::unsupported(w).find("semi_implicit_euler"), std::string::npos);
+    EXPECT_NE(calder::bulk::unsupported(w).find("semi_implicit_euler"), std::string::npos);
   }
   {
     World w = world;
     w.set_update_order(calder::UpdateOrder::sequential);
-    EXPECT_NE(calder::movers::unsupported(w).find("simultaneous"), std::string::npos);
+    EXPECT_NE(calder::bulk::unsupported(w).find("simultaneous"), std::string::npos);
   }
 }
 
@@ -794,8 +794,8 @@ TEST_F(MoversTest, FastArithmeticWithoutTheKernelsThrows) {
   World f32 = rain_world(1000, Arithmetic::float32, 0);
   World f64 = rain_world(1000, Arithmetic::float64, 0);
   const PlainLoops plain;
-  expect_refused(f32, 10, {"float32", "calder::movers"});
-  expect_refused(f64, 1, {"float64", "calder::movers"});
+  expect_refused(f32, 10, {"float32", "calder::bulk"});
+  expect_refused(f64, 1, {"float64", "calder::bulk"});
 }
 
 // A world in which the lightest body overflows during the given step of a
@@ -882,8 +882,8 @@ TEST_F(MoversTest, NegativeThreadsAreRefused) {
 
 TEST_F(MoversTest, KernelNameAndThreads) {
   const std::set<std::string> names{"avx512", "avx2+fma", "sse2", "generic"};
-  EXPECT_EQ(names.count(calder::movers::kernel_name()), 1u) << calder::movers::kernel_name();
-  EXPECT_GE(calder::movers::max_threads(), 1);
+  EXPECT_EQ(names.count(calder::bulk::kernel_name()), 1u) << calder::bulk::kernel_name();
+  EXPECT_GE(calder::bulk::max_threads(), 1);
 }
 
 // --- 7. physics through the kernels -------------------------------------------

@@ -71,7 +71,7 @@
       if (!core) throw new Error('calder: not ready yet (await calder.ready)');
       return core.scenes();
     },
-    // The instruction sets of the module's kernels: {movers, nbody}.
+    // The instruction sets of the module's kernels: {bulk, nbody}.
     kernels() {
       if (!core) throw new Error('calder: not ready yet (await calder.ready)');
       return core.kernels();

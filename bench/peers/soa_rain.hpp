@@ -4,7 +4,7 @@
 // plain structure-of-arrays loop anyone would write for it, one pass over the
 // arrays per step, branch-free, compiled with -O3 -march=native -ffast-math
 // (soa_rain_loop.cpp; a second copy with -mavx2 -mfma for the AVX2 column).
-// Not calder code: what calder::movers must at least match.
+// Not calder code: what calder::bulk must at least match.
 // One definition for bench_movers, `calder bench` and their tests.
 #pragma once
 

@@ -1,15 +1,15 @@
 // SPDX-License-Identifier: MIT
 // calder: the plug-in points for whole-world kernels, chosen per world.
 //
-// The core has no kernels of its own and no dependencies; calder::movers
+// The core has no kernels of its own and no dependencies; calder::bulk
 // (whole-world steps) and calder::nbody (fast mutual attraction) plug in
 // here. A world takes them from its WorldDef::backends:
 //
-//   calder::World world({.backends = {.step_batch = calder::movers::step_batch,
+//   calder::World world({.backends = {.step_batch = calder::bulk::step_batch,
 //                                     .mutual_attraction = calder::nbody::mutual_attraction}});
 //
 // A backend left null there is the process default, which
-// calder::movers::install() and calder::nbody::install() set (the
+// calder::bulk::install() and calder::nbody::install() set (the
 // `calder` command, the Python module and the web build call them).
 #pragma once
 
@@ -25,7 +25,7 @@ struct FieldContext;
 // Runs batch.steps simultaneous semi-implicit Euler steps and returns true,
 // or returns false, changing nothing, when it has no kernel for one of the
 // fields (then *why_not, if given, names it). It may throw only before it
-// changes anything. (calder::movers::step_batch.)
+// changes anything. (calder::bulk::step_batch.)
 using StepBatchBackend = bool (*)(const StepBatch& batch, std::string* why_not);
 
 // Adds the pair accelerations of all bodies for a MutualAttraction field of

@@ -4,7 +4,7 @@
 // A world keeps one column (array) per quantity, body i at index i of each.
 // Every place that holds or moves whole bodies - World's storage, add,
 // clear, save and restore, the read-only BodyView, World::add_bodies' input,
-// the batch handed to calder::movers, its tiles and their load and store -
+// the batch handed to calder::bulk, its tiles and their load and store -
 // is this one template with another column type, and walks the columns with
 // for_each_column. A new quantity is a member here and a line in
 // for_each_property, BodyDef's field and its row (src/world.cpp); see

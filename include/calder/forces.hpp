@@ -72,7 +72,7 @@ Vec2 lift(Vec2 velocity, double coefficient);
 
 // What is clamped before the inverse-square law is applied: the one list of
 // the inverse-square laws, shared by the core, calder::nbody (nbody::Law is
-// this enum) and calder::movers.
+// this enum) and calder::bulk.
 enum class DistanceClamp {
   distance,          // d = constrain(|r|, min, max); strength / (d * d)   (examples 2.6-2.9)
   squared_distance,  // dsq = constrain(|r|^2, min, max); strength / dsq   (exercise 2.16)
@@ -121,7 +121,7 @@ struct AttractionLaw {
   void validate(const char* where) const;
   // Whether this is one of the inverse-square laws of DistanceClamp (no
   // custom law, exponent 2, no repulsive core): the laws that calder::nbody's
-  // and calder::movers' kernels run.
+  // and calder::bulk's kernels run.
   [[nodiscard]] bool inverse_square() const {
     return !custom && exponent == 2.0 && repulsion == 0.0;
   }

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 // calder: what World::step hands a StepBatchBackend (calder/backends.hpp):
-// for writers of whole-world kernels (calder::movers).
+// for writers of whole-world kernels (calder::bulk).
 #pragma once
 
 #include <cstddef>

@@ -89,7 +89,7 @@ struct Boundary {
 };
 
 // The arithmetic of the per-body fields (everything but mutual attraction
-// and custom forces) when the world steps with calder::movers' kernels.
+// and custom forces) when the world steps with calder::bulk's kernels.
 enum class Arithmetic {
   // IEEE double, operation by operation in the book's order: the same bits
   // as the plain loops, so p5.js sketches are reproduced exactly. The kernels
@@ -131,7 +131,7 @@ struct WorldDef {
   UpdateOrder update_order = UpdateOrder::simultaneous;
   Boundary boundary{};
   std::uint32_t seed = 0;  // seeds the world's random() and noise()
-  // float64 and float32 need calder::movers' kernels (backends) and a world it has
+  // float64 and float32 need calder::bulk's kernels (backends) and a world it has
   // kernels for (semi-implicit Euler, simultaneous, no custom force or
   // mutual attraction); World::step throws calder::Error otherwise.
   Arithmetic arithmetic = Arithmetic::book;
@@ -142,7 +142,7 @@ struct WorldDef {
   // p5's vel.limit(topSpeed) (semi_implicit_euler, book arithmetic); 0, none.
   double max_speed = 0.0;
   // The whole-world kernels of this world (calder/backends.hpp); null: the
-  // process defaults that calder::movers::install() and
+  // process defaults that calder::bulk::install() and
   // calder::nbody::install() set.
   Backends backends{};
 };
@@ -241,7 +241,7 @@ class World {
   // names the field or the body. Never a silent NaN.
   void step();
   // count steps. Large worlds (and the float64 / float32 arithmetic) go
-  // through calder::movers' kernels when installed, a batch of up to
+  // through calder::bulk's kernels when installed, a batch of up to
   // kBatchSteps steps at a time, each body advanced through the whole batch
   // while it sits in cache. With book arithmetic the bits are those of
   // count calls to step(); if a step fails the world is left as step() would

@@ -3,9 +3,9 @@
 // written as a C++ program would, timed the same way (best of --repeat).
 // Prints one JSON object; the state hashes let the script check that both
 // sides did the same work.
+#include <calder/bulk.hpp>
 #include <calder/diagnostics.hpp>
 #include <calder/fields.hpp>
-#include <calder/movers.hpp>
 #include <calder/random.hpp>
 #include <calder/world.hpp>
 #include <chrono>
@@ -59,7 +59,7 @@ calder::World rain(const Drops& d, double width, double height, bool add_fields)
 }  // namespace
 
 int main(int argc, char** argv) {
-  calder::movers::install();
+  calder::bulk::install();
   const int repeat = argc > 1 ? std::atoi(argv[1]) : 5;
   const int small_calls = 200'000;
   const int rain_steps = 1000;

@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: MIT
 // The extension module calder._calder: the engine's public API for Python.
 // python/calder/__init__.py re-exports it with a few helpers.
+#include <calder/bulk.hpp>
 #include <calder/error.hpp>
-#include <calder/movers.hpp>
 #include <calder/nbody.hpp>
 #include <calder/render.hpp>
 #include <calder/scene_file.hpp>
@@ -79,7 +79,7 @@ PYBIND11_MODULE(_calder, m) {
 
   // The kernels behind World.step(n) and the n-body methods, as the calder command does.
   calder::nbody::install();
-  calder::movers::install();
+  calder::bulk::install();
 
   static py::exception<calder::Error> error(m, "Error", PyExc_ValueError);
   error.doc() = "A bad argument or a failed step; the message is calder's (a ValueError).";

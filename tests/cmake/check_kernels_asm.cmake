@@ -1,5 +1,5 @@
 # SPDX-License-Identifier: MIT
-# lint.movers_kernels_asm: reads the machine code of calder::movers' kernel
+# lint.bulk_kernels_asm: reads the machine code of calder::bulk's kernel
 # objects (objdump) and checks what the source promises:
 #   - the book kernels contain no fused multiply-add (they must round every
 #     operation as the plain loops do, or p5.js sketches drift);

@@ -12,7 +12,7 @@
 #     is and run;
 #   - any other snippet is a fragment, compiled (not run) as the body of a
 #     function, after `#include` of every public calder header (calder.hpp,
-#     render.hpp, scene_file.hpp, nbody.hpp, movers.hpp), <iostream>,
+#     render.hpp, scene_file.hpp, nbody.hpp, bulk.hpp), <iostream>,
 #     <string>, and `using namespace calder;`;
 #   - an HTML comment on the line just before the fence,
 #     `<!-- snippet: DECLARATIONS -->`, gives the names a fragment assumes
@@ -58,7 +58,7 @@ function(calder_extract_snippets markdown out_dir prefix sources_var runnable_va
       string(
         CONCAT program
           "// Extracted from ${markdown}, snippet ${count}: a fragment.\n"
-          "#include <calder/calder.hpp>\n#include <calder/movers.hpp>\n"
+          "#include <calder/calder.hpp>\n#include <calder/bulk.hpp>\n"
           "#include <calder/nbody.hpp>\n#include <calder/render.hpp>\n"
           "#include <calder/scene_file.hpp>\n#include <iostream>\n#include <string>\n"
           "using namespace calder;\n"

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
-// check_kernel_spills: lint.movers_kernels_spills. Reads the machine code of
-// calder::movers' kernel objects (objdump -d) and measures how much their
+// check_kernel_spills: lint.bulk_kernels_spills. Reads the machine code of
+// calder::bulk's kernel objects (objdump -d) and measures how much their
 // vector loops spill: in every function whose name contains FUNCTION, the
 // innermost loops (a backward jump and its target, containing no other such
 // range) that call nothing, and in them the vector registers stored to the

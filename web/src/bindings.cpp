@@ -24,9 +24,9 @@
 #include <variant>
 #include <vector>
 
+#include "calder/bulk.hpp"
 #include "calder/diagnostics.hpp"
 #include "calder/error.hpp"
-#include "calder/movers.hpp"
 #include "calder/nbody.hpp"
 #include "calder/render.hpp"
 #include "calder/scene.hpp"
@@ -365,14 +365,14 @@ val scene_list() {
 // The instruction sets of the kernels the module was built with.
 val kernel_names() {
   val out = val::object();
-  out.set("movers", std::string(calder::movers::kernel_name()));
+  out.set("bulk", std::string(calder::bulk::kernel_name()));
   out.set("nbody", std::string(calder::nbody::kernel_name()));
   return out;
 }
 
 EMSCRIPTEN_BINDINGS(calder_web) {
-  calder::nbody::install();   // scenes may ask for method = "direct" or "barnes_hut"
-  calder::movers::install();  // large worlds step through the tile kernels, as `calder run`
+  calder::nbody::install();  // scenes may ask for method = "direct" or "barnes_hut"
+  calder::bulk::install();   // large worlds step through the tile kernels, as `calder run`
   emscripten::function("scenes", &scene_list);
   emscripten::function("kernels", &kernel_names);
   emscripten::class_<WebSimulation>("Simulation")

@@ -88,13 +88,13 @@ for (const name of names) {
   fromText.delete();
 }
 
-// Large worlds step through calder::movers' tile kernels (with WebAssembly
+// Large worlds step through calder::bulk's tile kernels (with WebAssembly
 // SIMD in the default build), as natively: the book arithmetic gives the
 // plain loops' bits, so the same hash as native `calder run` of the same text.
 {
   const kernels = core.kernels();
   const expected = process.env.CALDER_WEB_MOVERS_KERNELS || 'wasm-simd128';
-  check(kernels.movers === expected, `the movers' kernels are ${kernels.movers} (expected ${expected})`);
+  check(kernels.bulk === expected, `the bulk kernels are ${kernels.bulk} (expected ${expected})`);
   const sim = new core.Simulation('rain', {seed: 1, count: 20000});
   const text = sim.toml();
   sim.step(300);

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// calder::movers: compiles a batch's fields into passes (see plan.hpp).
+// calder::bulk: compiles a batch's fields into passes (see plan.hpp).
 //
 // Every field kind has here either an op_of (the op its kernel runs, its
 // parameters in the kernel's precision R) or a no_kernel (why the kernels
@@ -17,7 +17,7 @@
 #include "calder/forces.hpp"
 #include "calder/random.hpp"
 
-namespace calder::movers::detail {
+namespace calder::bulk::detail {
 
 namespace {
 
@@ -241,4 +241,4 @@ bool compile(const StepBatch& batch, Plan& plan, std::string* why_not) {
   return true;
 }
 
-}  // namespace calder::movers::detail
+}  // namespace calder::bulk::detail

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
-// calder::movers: the book-arithmetic tile kernel (kernels_impl.hpp).
+// calder::bulk: the book-arithmetic tile kernel (kernels_impl.hpp).
 //
-// Compiled once per instruction set (CMakeLists.txt, calder_movers) with
+// Compiled once per instruction set (CMakeLists.txt, calder_bulk) with
 // -ffp-contract=off: no fused multiply-adds, so that every operation rounds
 // as in the plain loops and the results are the same bits. Vector
 // instructions don't change a bit: IEEE +, -, *, / and sqrt are correctly
@@ -12,13 +12,13 @@
 #error "CALDER_KERNEL_VARIANT must name the variant (set by CMakeLists.txt)"
 #endif
 
-#define CALDER_MOVERS_CAT2(a, b) a##b
-#define CALDER_MOVERS_CAT(a, b) CALDER_MOVERS_CAT2(a, b)
+#define CALDER_BULK_CAT2(a, b) a##b
+#define CALDER_BULK_CAT(a, b) CALDER_BULK_CAT2(a, b)
 
-namespace calder::movers::detail {
+namespace calder::bulk::detail {
 
-void CALDER_MOVERS_CAT(advance_book64_, CALDER_KERNEL_VARIANT)(const Plan& plan, const Tile& tile) {
+void CALDER_BULK_CAT(advance_book64_, CALDER_KERNEL_VARIANT)(const Plan& plan, const Tile& tile) {
   advance_book64(plan, tile);
 }
 
-}  // namespace calder::movers::detail
+}  // namespace calder::bulk::detail

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// calder::movers: picks the tile kernels (kernels_book.cpp and
+// calder::bulk: picks the tile kernels (kernels_book.cpp and
 // kernels_fast.cpp, compiled per instruction set) for the running CPU, once.
 // The variants are CMakeLists.txt's (CALDER_KERNEL_VARIANTS), chosen as
 // calder::nbody chooses its own (src/kernel_level.hpp).
@@ -10,25 +10,25 @@
 #include "calder_kernel_variants.hpp"
 #include "plan.hpp"
 
-namespace calder::movers::detail {
+namespace calder::bulk::detail {
 
-#define CALDER_MOVERS_DECLARE(variant)                     \
+#define CALDER_BULK_DECLARE(variant)                       \
   const char* kernel_name_##variant();                     \
   void advance_book64_##variant(const Plan&, const Tile&); \
   void advance_fast64_##variant(const Plan&, const Tile&); \
   void advance_fast32_##variant(const Plan&, const Tile&);
-CALDER_KERNEL_VARIANTS(CALDER_MOVERS_DECLARE)
+CALDER_KERNEL_VARIANTS(CALDER_BULK_DECLARE)
 
 namespace {
 
-#define CALDER_MOVERS_CANDIDATE(variant)                                       \
+#define CALDER_BULK_CANDIDATE(variant)                                         \
   std::pair<std::string_view, KernelTable>{                                    \
       #variant, KernelTable{kernel_name_##variant(), advance_book64_##variant, \
                             advance_fast64_##variant, advance_fast32_##variant}},
 
 KernelTable choose() {
   const std::pair<std::string_view, KernelTable> compiled[] = {
-      CALDER_KERNEL_VARIANTS(CALDER_MOVERS_CANDIDATE)};
+      CALDER_KERNEL_VARIANTS(CALDER_BULK_CANDIDATE)};
   return calder::detail::best_variant(compiled);
 }
 
@@ -39,4 +39,4 @@ const KernelTable& kernels() {
   return table;
 }
 
-}  // namespace calder::movers::detail
+}  // namespace calder::bulk::detail

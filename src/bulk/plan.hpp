@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// calder::movers internals: a batch's fields compiled into a list of passes
+// calder::bulk internals: a batch's fields compiled into a list of passes
 // (plan.cpp), and the kernels that run them over one tile (kernels_*.cpp,
 // compiled per instruction set, chosen at run time by dispatch.cpp).
 #pragma once
@@ -14,7 +14,7 @@
 #include "calder/step_batch.hpp"
 #include "calder/world.hpp"
 
-namespace calder::movers::detail {
+namespace calder::bulk::detail {
 
 enum class OpKind : std::uint8_t {
   uniform,         // the same force on every body: Wind, Helium, Gravity, NoiseWind
@@ -105,4 +105,4 @@ struct KernelTable {
 
 const KernelTable& kernels();
 
-}  // namespace calder::movers::detail
+}  // namespace calder::bulk::detail

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// calder::movers: the tile kernels (see plan.hpp), as templates over the
+// calder::bulk: the tile kernels (see plan.hpp), as templates over the
 // precision R and the arithmetic: kBook = true repeats the book's operations
 // in its order (World's plain loops, calder/forces.hpp), kBook = false is the
 // fast form of the same physics.
@@ -35,14 +35,14 @@
 #endif
 
 #include "../integrate.hpp"
-#include "calder/movers.hpp"
+#include "calder/bulk.hpp"
 #include "plan.hpp"
 
 // The kernels' lambdas (an op's force, a pass over a chunk) must be inlined
 // into their vector loops: called, a Block goes through memory.
-#define CALDER_MOVERS_INLINE __attribute__((always_inline))
+#define CALDER_BULK_INLINE __attribute__((always_inline))
 
-namespace calder::movers::detail {
+namespace calder::bulk::detail {
 // Internal linkage: each kernel file has its own copies, built with its own
 // flags (see integrate.hpp).
 namespace {
@@ -517,60 +517,60 @@ template <class R, bool kBook, class Each>
         const auto si = static_cast<std::size_t>(step);
         const R fx = R(op.per_step[2 * si]);
         const R fy = R(op.per_step[2 * si + 1]);
-        return each([=](Block<R>& b) CALDER_MOVERS_INLINE { op_uniform<R, kBook>(b, fx, fy); });
+        return each([=](Block<R>& b) CALDER_BULK_INLINE { op_uniform<R, kBook>(b, fx, fy); });
       }
-      return each([=](Block<R>& b) CALDER_MOVERS_INLINE { op_uniform<R, kBook>(b, p.fx, p.fy); });
+      return each([=](Block<R>& b) CALDER_BULK_INLINE { op_uniform<R, kBook>(b, p.fx, p.fy); });
     case OpKind::gravity_scaled:
       return each([=](Block<R>& b)
-                      CALDER_MOVERS_INLINE { op_gravity_scaled<R, kBook>(b, p.fx, p.fy); });
+                      CALDER_BULK_INLINE { op_gravity_scaled<R, kBook>(b, p.fx, p.fy); });
     case OpKind::drag:
       if (p.never_reverse) {
         if (p.everywhere)
           return each([=](Block<R>& b)
-                          CALDER_MOVERS_INLINE { op_drag<R, kBook, true, true>(b, p, dt); });
+                          CALDER_BULK_INLINE { op_drag<R, kBook, true, true>(b, p, dt); });
         return each([=](Block<R>& b)
-                        CALDER_MOVERS_INLINE { op_drag<R, kBook, true, false>(b, p, dt); });
+                        CALDER_BULK_INLINE { op_drag<R, kBook, true, false>(b, p, dt); });
       }
       if (p.everywhere)
         return each([=](Block<R>& b)
-                        CALDER_MOVERS_INLINE { op_drag<R, kBook, false, true>(b, p, dt); });
+                        CALDER_BULK_INLINE { op_drag<R, kBook, false, true>(b, p, dt); });
       return each([=](Block<R>& b)
-                      CALDER_MOVERS_INLINE { op_drag<R, kBook, false, false>(b, p, dt); });
+                      CALDER_BULK_INLINE { op_drag<R, kBook, false, false>(b, p, dt); });
     case OpKind::friction:
       if (p.never_reverse)
-        return each([=](Block<R>& b) CALDER_MOVERS_INLINE {
+        return each([=](Block<R>& b) CALDER_BULK_INLINE {
           op_friction<R, kBook, true>(b, p, width, height, dt);
         });
-      return each([=](Block<R>& b) CALDER_MOVERS_INLINE {
+      return each([=](Block<R>& b) CALDER_BULK_INLINE {
         op_friction<R, kBook, false>(b, p, width, height, dt);
       });
     case OpKind::attractor:
       switch (p.law) {
         case DistanceClamp::distance:
-          return each([=](Block<R>& b) CALDER_MOVERS_INLINE {
+          return each([=](Block<R>& b) CALDER_BULK_INLINE {
             op_attractor<R, kBook, DistanceClamp::distance, false>(b, p);
           });
         case DistanceClamp::squared_distance:
-          return each([=](Block<R>& b) CALDER_MOVERS_INLINE {
+          return each([=](Block<R>& b) CALDER_BULK_INLINE {
             op_attractor<R, kBook, DistanceClamp::squared_distance, false>(b, p);
           });
         case DistanceClamp::none:
           if (p.eps == R(0))
-            return each([=](Block<R>& b) CALDER_MOVERS_INLINE {
+            return each([=](Block<R>& b) CALDER_BULK_INLINE {
               op_attractor<R, kBook, DistanceClamp::none, false>(b, p);
             });
-          return each([=](Block<R>& b) CALDER_MOVERS_INLINE {
+          return each([=](Block<R>& b) CALDER_BULK_INLINE {
             op_attractor<R, kBook, DistanceClamp::none, true>(b, p);
           });
       }
       return;
     case OpKind::edge_force:
       return each([=](Block<R>& b)
-                      CALDER_MOVERS_INLINE { op_edge_force<R, kBook>(b, p, width, height); });
+                      CALDER_BULK_INLINE { op_edge_force<R, kBook>(b, p, width, height); });
     case OpKind::fan:
-      return each([=](Block<R>& b) CALDER_MOVERS_INLINE { op_fan<R, kBook>(b, p); });
+      return each([=](Block<R>& b) CALDER_BULK_INLINE { op_fan<R, kBook>(b, p); });
     case OpKind::lift:
-      return each([=](Block<R>& b) CALDER_MOVERS_INLINE { op_lift<R, kBook>(b, p); });
+      return each([=](Block<R>& b) CALDER_BULK_INLINE { op_lift<R, kBook>(b, p); });
   }
 }
 
@@ -622,7 +622,7 @@ void advance_chunk(const Plan& plan, Chunk<R>& chunk, std::size_t vectors,
     const V base_x = splat<V>(cx);
     const V base_y = splat<V>(cy);
     // Vector v as the first pass of the step sees it.
-    const auto first_load = [&](std::size_t v) CALDER_MOVERS_INLINE {
+    const auto first_load = [&](std::size_t v) CALDER_BULK_INLINE {
       Block<R> b = load_block(chunk, v, step == 0);
       if constexpr (!kBook) {
         b.ax += base_x;
@@ -632,7 +632,7 @@ void advance_chunk(const Plan& plan, Chunk<R>& chunk, std::size_t vectors,
     };
     for (std::size_t q = 0; q + 1 < passes.size(); ++q) {
       const std::size_t k = passes[q];
-      const auto each = [&](auto force) CALDER_MOVERS_INLINE {
+      const auto each = [&](auto force) CALDER_BULK_INLINE {
         for (std::size_t v = 0; v < vectors; ++v) {
           Block<R> b = q == 0 ? first_load(v) : load_block(chunk, v, true);
           force(b);
@@ -645,8 +645,8 @@ void advance_chunk(const Plan& plan, Chunk<R>& chunk, std::size_t vectors,
     }
     // The last pass: the last op, the update, the boundary.
     const bool alone = passes.size() <= 1;
-    const auto last = [&](auto update_one) CALDER_MOVERS_INLINE {
-      const auto each = [&](auto force) CALDER_MOVERS_INLINE {
+    const auto last = [&](auto update_one) CALDER_BULK_INLINE {
+      const auto each = [&](auto force) CALDER_BULK_INLINE {
         for (std::size_t v = 0; v < vectors; ++v) {
           Block<R> b = alone ? first_load(v) : load_block(chunk, v, true);
           force(b);
@@ -657,15 +657,15 @@ void advance_chunk(const Plan& plan, Chunk<R>& chunk, std::size_t vectors,
           __builtin_memcpy(chunk.vy.values + b.at, &b.vy, sizeof(V));
         }
       };
-      if (passes.empty()) return each([](Block<R>&) CALDER_MOVERS_INLINE {});
+      if (passes.empty()) return each([](Block<R>&) CALDER_BULK_INLINE {});
       const std::size_t k = passes.back();
       apply_op<R, kBook>(each, plan.ops[k], plan.ops[k].template params<R>(), step, width, height,
                          dt);
     };
     if (boundary.kind == BoundaryKind::bounce && boundary.use_radius) {
-      last([=](Block<R>& b) CALDER_MOVERS_INLINE { update_bounce<R, true>(b, walls, dt); });
+      last([=](Block<R>& b) CALDER_BULK_INLINE { update_bounce<R, true>(b, walls, dt); });
     } else {
-      last([&](Block<R>& b) CALDER_MOVERS_INLINE { update(b, boundary, width, height, dt); });
+      last([&](Block<R>& b) CALDER_BULK_INLINE { update(b, boundary, width, height, dt); });
     }
   }
 }
@@ -707,4 +707,4 @@ inline void advance_fast32(const Plan& plan, const Tile& tile) {
 }
 
 }  // namespace
-}  // namespace calder::movers::detail
+}  // namespace calder::bulk::detail

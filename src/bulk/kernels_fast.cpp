@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
-// calder::movers: the float64 and float32 tile kernels (kernels_impl.hpp).
+// calder::bulk: the float64 and float32 tile kernels (kernels_impl.hpp).
 //
-// Compiled once per instruction set (CMakeLists.txt, calder_movers) with
+// Compiled once per instruction set (CMakeLists.txt, calder_bulk) with
 // -ffp-contract=fast: fused multiply-adds are welcome here; none of the
 // book-fidelity code goes through this file.
 #include "kernels_impl.hpp"
@@ -10,13 +10,13 @@
 #error "CALDER_KERNEL_VARIANT must name the variant (set by CMakeLists.txt)"
 #endif
 
-#define CALDER_MOVERS_CAT2(a, b) a##b
-#define CALDER_MOVERS_CAT(a, b) CALDER_MOVERS_CAT2(a, b)
+#define CALDER_BULK_CAT2(a, b) a##b
+#define CALDER_BULK_CAT(a, b) CALDER_BULK_CAT2(a, b)
 
-namespace calder::movers::detail {
+namespace calder::bulk::detail {
 
 // The instruction set this file was compiled for.
-const char* CALDER_MOVERS_CAT(kernel_name_, CALDER_KERNEL_VARIANT)() {
+const char* CALDER_BULK_CAT(kernel_name_, CALDER_KERNEL_VARIANT)() {
 #if defined(__AVX512F__)
   return "avx512";
 #elif defined(__AVX2__) && defined(__FMA__)
@@ -30,12 +30,12 @@ const char* CALDER_MOVERS_CAT(kernel_name_, CALDER_KERNEL_VARIANT)() {
 #endif
 }
 
-void CALDER_MOVERS_CAT(advance_fast64_, CALDER_KERNEL_VARIANT)(const Plan& plan, const Tile& tile) {
+void CALDER_BULK_CAT(advance_fast64_, CALDER_KERNEL_VARIANT)(const Plan& plan, const Tile& tile) {
   advance_fast64(plan, tile);
 }
 
-void CALDER_MOVERS_CAT(advance_fast32_, CALDER_KERNEL_VARIANT)(const Plan& plan, const Tile& tile) {
+void CALDER_BULK_CAT(advance_fast32_, CALDER_KERNEL_VARIANT)(const Plan& plan, const Tile& tile) {
   advance_fast32(plan, tile);
 }
 
-}  // namespace calder::movers::detail
+}  // namespace calder::bulk::detail

@@ -1,15 +1,15 @@
 // SPDX-License-Identifier: MIT
-// calder::movers: whole-world kernels for the per-body fields, for worlds of
+// calder::bulk: whole-world kernels for the per-body fields, for worlds of
 // thousands to millions of movers that don't interact (rain, particles,
 // crowds under wind and drag).
 //
-// A world whose WorldDef::backends.step_batch is calder::movers::step_batch
-// (or any world, after calder::movers::install()) hands its large steps,
+// A world whose WorldDef::backends.step_batch is calder::bulk::step_batch
+// (or any world, after calder::bulk::install()) hands its large steps,
 // World::step(count), to these kernels instead of stepping body by body
 // through the fields:
 //
 //   calder::World world({.arithmetic = calder::Arithmetic::book, .threads = 0,
-//                        .backends = {.step_batch = calder::movers::step_batch}});
+//                        .backends = {.step_batch = calder::bulk::step_batch}});
 //   ... add 100000 bodies, Gravity, Drag, a bounce boundary ...
 //   world.step(1000);                     // vectorised, threaded, cache-blocked
 //
@@ -26,7 +26,7 @@
 // (World::kBatchSteps): each step is one pass over the chunk per op, the
 // last op's pass fused with the update and the boundary, each pass a loop
 // over vectors of bodies (AVX-512, AVX2 + FMA or SSE2, as calder::nbody's
-// kernels; details in src/movers/kernels_impl.hpp). Bodies don't interact,
+// kernels; details in src/bulk/kernels_impl.hpp). Bodies don't interact,
 // so no order between tiles matters: results are bit-identical for any
 // number of threads, and there is no broad phase to pay for.
 //
@@ -46,7 +46,7 @@
 
 #include "calder/world.hpp"
 
-namespace calder::movers {
+namespace calder::bulk {
 
 // Bodies per tile (one thread, one cache-resident block).
 inline constexpr std::size_t kTile = 256;
@@ -70,4 +70,4 @@ const char* kernel_name();
 // The number of threads that threads = 0 means (1 without OpenMP).
 int max_threads();
 
-}  // namespace calder::movers
+}  // namespace calder::bulk

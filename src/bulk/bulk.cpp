@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: MIT
-// calder::movers: the whole-world batch stepper (see calder/movers.hpp):
+// calder::bulk: the whole-world batch stepper (see calder/bulk.hpp):
 // compiles the fields, cuts the bodies into tiles and hands the tiles to
 // threads; each tile runs the whole batch in one kernel call.
-#include "calder/movers.hpp"
+#include "calder/bulk.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -17,7 +17,7 @@
 #include <omp.h>
 #endif
 
-namespace calder::movers {
+namespace calder::bulk {
 
 namespace {
 
@@ -114,4 +114,4 @@ int max_threads() {
 #endif
 }
 
-}  // namespace calder::movers
+}  // namespace calder::bulk
