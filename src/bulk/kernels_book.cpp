@@ -8,13 +8,6 @@
 // rounded lane by lane.
 #include "kernels_impl.hpp"
 
-#ifndef CALDER_KERNEL_VARIANT
-#error "CALDER_KERNEL_VARIANT must name the variant (set by CMakeLists.txt)"
-#endif
-
-#define CALDER_BULK_CAT2(a, b) a##b
-#define CALDER_BULK_CAT(a, b) CALDER_BULK_CAT2(a, b)
-
 namespace calder::bulk::detail {
 
 void CALDER_BULK_CAT(advance_book64_, CALDER_KERNEL_VARIANT)(const Plan& plan, const Tile& tile) {

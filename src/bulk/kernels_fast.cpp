@@ -6,13 +6,6 @@
 // book-fidelity code goes through this file.
 #include "kernels_impl.hpp"
 
-#ifndef CALDER_KERNEL_VARIANT
-#error "CALDER_KERNEL_VARIANT must name the variant (set by CMakeLists.txt)"
-#endif
-
-#define CALDER_BULK_CAT2(a, b) a##b
-#define CALDER_BULK_CAT(a, b) CALDER_BULK_CAT2(a, b)
-
 namespace calder::bulk::detail {
 
 // The instruction set this file was compiled for.

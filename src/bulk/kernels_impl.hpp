@@ -708,3 +708,11 @@ inline void advance_fast32(const Plan& plan, const Tile& tile) {
 
 }  // namespace
 }  // namespace calder::bulk::detail
+
+// The kernel files define their entry points per variant:
+// CALDER_BULK_CAT(advance_book64_, CALDER_KERNEL_VARIANT) is advance_book64_<variant>.
+#ifndef CALDER_KERNEL_VARIANT
+#error "CALDER_KERNEL_VARIANT must name the variant (set by CMakeLists.txt)"
+#endif
+#define CALDER_BULK_CAT2(a, b) a##b
+#define CALDER_BULK_CAT(a, b) CALDER_BULK_CAT2(a, b)
