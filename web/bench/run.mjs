@@ -5,7 +5,7 @@
 //    n-body method the page picks): drawn frames/s and pair interactions/s;
 //  - rain at 10^4 and 10^5 bodies: physics steps/s and drawn frames/s in the
 //    page, and native `calder run` on one core of the same machine (a ratio);
-//  - the module without WebAssembly SIMD (-msimd128), with it in the movers'
+//  - the module without WebAssembly SIMD (-msimd128), with it in calder::bulk's
 //    kernels (the page's build) and in every kernel file, physics only;
 //  - the page's size, gzipped.
 // Prints a Markdown report (docs/PERFORMANCE.md, "In the browser").
@@ -155,7 +155,7 @@ out();
 
 // --- WebAssembly SIMD ---
 if (mounts['/simd/']) {
-  out('| physics only, steps/s | no SIMD | SIMD in the movers\' kernels (the page) | SIMD in every kernel file | page / no SIMD | every kernel / page |');
+  out('| physics only, steps/s | no SIMD | SIMD in calder::bulk\'s kernels (the page) | SIMD in every kernel file | page / no SIMD | every kernel / page |');
   out('|---|---|---|---|---|---|');
   const cases = [
     ['rain, 10^4 bodies', 'rain', {seed: 1, count: 10000}],
@@ -166,10 +166,10 @@ if (mounts['/simd/']) {
   ];
   for (const [label, scene, options] of cases) {
     const plain = await physicsRate('/plain', scene, options);
-    const movers = await physicsRate('', scene, options);
+    const bulk = await physicsRate('', scene, options);
     const all = await physicsRate('/simd', scene, options);
-    out(`| ${label} | ${fmt(plain)} | ${fmt(movers)} | ${fmt(all)} | ${fmt(movers / plain, 2)} | ${fmt(all / movers, 2)} |`);
-    results.simd.push({label, movers: movers / plain, all: all / movers});
+    out(`| ${label} | ${fmt(plain)} | ${fmt(bulk)} | ${fmt(all)} | ${fmt(bulk / plain, 2)} | ${fmt(all / bulk, 2)} |`);
+    results.simd.push({label, bulk: bulk / plain, all: all / bulk});
   }
   out();
 }
@@ -209,7 +209,7 @@ out(`- the page's files at most 500 KB gzipped: ${fmt(results.gzipKiB * 1.024, 0
 if (results.simd.length) {
   const wins = (key) => results.simd.filter((s) => s[key] > 1.05).map((s) => s.label);
   const list = (labels) => (labels.length ? labels.join('; ') : 'none of the cases');
-  out(`- SIMD in the movers' kernels (the page's build) faster by more than 5% than no SIMD for ${list(wins('movers'))}.`);
+  out(`- SIMD in calder::bulk's kernels (the page's build) faster by more than 5% than no SIMD for ${list(wins('bulk'))}.`);
   out(`- SIMD in the n-body kernels too faster by more than 5% than the page's build for ${list(wins('all'))}.`);
 }
 
@@ -236,7 +236,7 @@ if (writeAt > 0) {
     'Written by `scripts/web --bench` (`node web/bench/run.mjs --write',
     'docs/PERFORMANCE.md`), which replaces this section; `scripts/performance` keeps it.',
     'In the SIMD table, the example 2.9 rows of "page / no SIMD" run the same code (the',
-    'page gives SIMD to the movers\' kernels only): their distance from 1 is this run\'s noise.',
+    'page gives SIMD to calder::bulk\'s kernels only): their distance from 1 is this run\'s noise.',
     '',
     ...lines,
   ].join('\n');
