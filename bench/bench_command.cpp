@@ -104,8 +104,10 @@ constexpr double kTargetScaling = 1.8;
 constexpr double kTargetScalingBarnesHut = 1.85;  // issue 9
 constexpr std::size_t kScalingMinN = 10000;
 
-const char* const kArithmeticNames[] = {"book", "float64", "float32"};
-constexpr Arithmetic kArithmetics[] = {Arithmetic::book, Arithmetic::float64, Arithmetic::float32};
+// The arithmetics in calder::kArithmeticNames' order: book, float64, float32.
+std::string arithmetic_text(int a) {
+  return std::string(kArithmeticNames[static_cast<std::size_t>(a)].name);
+}
 
 // --- numbers as text ---------------------------------------------------------------
 
@@ -587,17 +589,17 @@ Section movers_section(const Plan& plan, Runner& runner, Results& results) {
 
     for (int a = 0; a < 3; ++a) {
       for (int threads : {1, 2}) {
-        runner.status(std::string("movers, N = ") + count_text(n) + ", " + kArithmeticNames[a] +
+        runner.status(std::string("movers, N = ") + count_text(n) + ", " + arithmetic_text(a) +
                       ", " + std::to_string(threads) + " thread(s)");
         World world = proto;
-        world.set_arithmetic(kArithmetics[a]);
+        world.set_arithmetic(kArithmeticNames[static_cast<std::size_t>(a)].value);
         world.set_threads(threads);
         const Measured m = runner.measure([&] {
           world.step(World::kBatchSteps);
           return bodies * World::kBatchSteps;
         });
         results.movers[{n, a, threads}] = m.rate;
-        table.rows.push_back({"calder movers", count_text(n), kArithmeticNames[a],
+        table.rows.push_back({"calder movers", count_text(n), arithmetic_text(a),
                               std::to_string(threads), rate_text(m.rate),
                               ratio_text(m.rate / box2d_rate), vs_floor(m.rate, a == 2, threads),
                               timing_note(m, "batch")});
@@ -852,7 +854,7 @@ Section targets_section(const Plan& plan, const Results& results) {
   for (int a = 0; a < 3; ++a) {
     const double goal = a == 0 ? 0.5 : 1.0;
     const std::string target =
-        std::string("movers ") + kArithmeticNames[a] +
+        "movers " + arithmetic_text(a) +
         " vs the SoA floor, 2 threads, every N: >= " + printf_text("%.2g", goal) + "x";
     if (!plan.movers) {
       add({target, "-", "not run"});
@@ -928,8 +930,7 @@ Section targets_section(const Plan& plan, const Results& results) {
     if (threads != 2 || n < kScalingMinN) continue;
     const auto one = lookup(results.movers, std::make_tuple(n, arithmetic, 1));
     if (one) {
-      worst(mover_scaling, *one, two,
-            std::string(kArithmeticNames[arithmetic]) + ", N = " + count_text(n));
+      worst(mover_scaling, *one, two, arithmetic_text(arithmetic) + ", N = " + count_text(n));
     }
   }
   add(scaling_target("movers", mover_scaling, plan.movers));

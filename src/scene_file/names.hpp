@@ -78,11 +78,14 @@ inline constexpr std::array<Choice<PairOrder>, 2> kPairOrders{{
     {"by_source", PairOrder::by_source},
 }};
 
-inline constexpr std::array<Choice<Arithmetic>, 3> kArithmetics{{
-    {"book", Arithmetic::book},
-    {"float64", Arithmetic::float64},
-    {"float32", Arithmetic::float32},
-}};
+// The core's one list of arithmetic names (calder::kArithmeticNames), as a table here.
+inline constexpr auto kArithmetics = [] {
+  std::array<Choice<Arithmetic>, kArithmeticNames.size()> out{};
+  for (std::size_t i = 0; i < out.size(); ++i) {
+    out[i] = {kArithmeticNames[i].name, kArithmeticNames[i].value};
+  }
+  return out;
+}();
 
 inline constexpr std::array<Choice<NBodyMethod>, 3> kNBodyMethods{{
     {"exact", NBodyMethod::exact},
