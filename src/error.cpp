@@ -38,9 +38,8 @@ void rethrow_with_context(const Error& error, std::string_view context) {
 
 namespace calder::detail {
 
-namespace {
-
-[[noreturn]] void fail(const char* where, const char* what, const char* condition, double value) {
+[[noreturn]] void fail_requirement(const char* where, const char* what, const char* condition,
+                                   double value) {
   std::string message;
   message += where;
   message += ": ";
@@ -51,22 +50,6 @@ namespace {
   message += format_number(value);
   message += ")";
   throw InvalidArgument(message);
-}
-
-}  // namespace
-
-void require_finite(double value, const char* where, const char* what) {
-  if (!std::isfinite(value)) fail(where, what, "finite", value);
-}
-
-void require_positive(double value, const char* where, const char* what) {
-  require_finite(value, where, what);
-  if (!(value > 0.0)) fail(where, what, "> 0", value);
-}
-
-void require_non_negative(double value, const char* where, const char* what) {
-  require_finite(value, where, what);
-  if (!(value >= 0.0)) fail(where, what, ">= 0", value);
 }
 
 std::string format_number(double value) {

@@ -30,16 +30,20 @@ void require_finite_vec(Vec2 v, const char* where, const char* what) {
   detail::require_finite(v.y, where, what);
 }
 
+// BodyDef::validate's rules, inline so that World::add_bodies' loop over
+// many bodies compiles to compares and branches.
+inline void validate_body(const BodyDef& def, const char* where) {
+  require_finite_vec(def.position, where, "position");
+  require_finite_vec(def.velocity, where, "velocity");
+  detail::require_positive(def.mass, where, "mass");
+  detail::require_non_negative(def.radius, where, "radius");
+  if (def.friction) detail::require_non_negative(*def.friction, where, "friction");
+  detail::require_non_negative(def.drag_area, where, "drag_area");
+}
+
 }  // namespace
 
-void BodyDef::validate(const char* where) const {
-  require_finite_vec(position, where, "position");
-  require_finite_vec(velocity, where, "velocity");
-  detail::require_positive(mass, where, "mass");
-  detail::require_non_negative(radius, where, "radius");
-  if (friction) detail::require_non_negative(*friction, where, "friction");
-  detail::require_non_negative(drag_area, where, "drag_area");
-}
+void BodyDef::validate(const char* where) const { validate_body(*this, where); }
 
 void Boundary::validate(const char* where) const {
   const std::string w = std::string(where) + ": boundary";
@@ -100,11 +104,6 @@ BodyDef body_of(const BodyColumnsOf<double>& row) {
           .drag_area = row.drag_area};
 }
 
-// The value of body i in an add_bodies column: its own, the one for all, or the default.
-double value_at(std::span<const double> column, std::size_t i, double fallback) {
-  return column.empty() ? fallback : column[column.size() == 1 ? 0 : i];
-}
-
 }  // namespace
 
 BodyId World::add_bodies(const BodyColumns& columns) {
@@ -124,16 +123,28 @@ BodyId World::add_bodies(const BodyColumns& columns) {
       },
       columns);
   const BodyColumnsOf<double> defaults = row_of(BodyDef{});
-  for (std::size_t i = 0; i < n; ++i) {
-    BodyColumnsOf<double> row{};
-    for_each_column([i](const char*, double& to, std::span<const double> column,
-                        double fallback) { to = value_at(column, i, fallback); },
-                    row, columns, defaults);
-    try {
-      body_of(row).validate("World::add_body");
-    } catch (const Error& e) {
-      rethrow_with_context(e, "World::add_bodies: body " + std::to_string(i) + ": ");
+  // Each column read through a pointer and a step: 1 for its own values, 0
+  // for one value for all (or the default).
+  BodyColumnsOf<const double*> from{};
+  BodyColumnsOf<std::size_t> step{};
+  for_each_column(
+      [n](const char*, const double*& p, std::size_t& s, std::span<const double> column,
+          const double& fallback) {
+        p = column.empty() ? &fallback : column.data();
+        s = column.size() == n && n > 1 ? 1 : 0;
+      },
+      from, step, columns, defaults);
+  std::size_t i = 0;
+  try {
+    for (; i < n; ++i) {
+      BodyColumnsOf<double> row{};
+      for_each_column(
+          [i](const char*, double& to, const double* p, std::size_t s) { to = p[i * s]; }, row,
+          from, step);
+      validate_body(body_of(row), "World::add_body");
     }
+  } catch (const Error& e) {
+    rethrow_with_context(e, "World::add_bodies: body " + std::to_string(i) + ": ");
   }
   const std::size_t count = body_count();
   if (n > UINT32_MAX - count) throw InvalidArgument("World::add_bodies: too many bodies");

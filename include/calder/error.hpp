@@ -15,6 +15,7 @@
 // into NaN silently.
 #pragma once
 
+#include <cmath>
 #include <cstddef>
 #include <optional>
 #include <stdexcept>
@@ -54,12 +55,30 @@ class RunError : public Error {
 
 namespace detail {
 
+// Throws InvalidArgument("<where>: <what> must be <condition> (got <value>)").
+[[noreturn]] void fail_requirement(const char* where, const char* what, const char* condition,
+                                   double value);
+
+// The checks below are inline, their failure out of line: a loop over many
+// bodies (World::add_bodies) pays a compare and a branch per value, not a call.
+
 // Throws InvalidArgument("<where>: <what> must be finite (got <value>)") unless value is finite.
-void require_finite(double value, const char* where, const char* what);
+inline void require_finite(double value, const char* where, const char* what) {
+  if (!std::isfinite(value)) [[unlikely]]
+    fail_requirement(where, what, "finite", value);
+}
 // Throws unless value is finite and > 0.
-void require_positive(double value, const char* where, const char* what);
+inline void require_positive(double value, const char* where, const char* what) {
+  require_finite(value, where, what);
+  if (!(value > 0.0)) [[unlikely]]
+    fail_requirement(where, what, "> 0", value);
+}
 // Throws unless value is finite and >= 0.
-void require_non_negative(double value, const char* where, const char* what);
+inline void require_non_negative(double value, const char* where, const char* what) {
+  require_finite(value, where, what);
+  if (!(value >= 0.0)) [[unlikely]]
+    fail_requirement(where, what, ">= 0", value);
+}
 // Formats a double the way the messages show it (shortest round-trip form).
 std::string format_number(double value);
 // Text from input, fit for a one-line message: control characters (and DEL)
