@@ -683,9 +683,11 @@ void advance_tile(const Plan& plan, const Tile& tile) {
         std::fill(to.values + tile.n, to.values + padded, R(from[0]));
       },
       chunk, tile.bodies);
-  const double* mass = tile.bodies.mass;
-  for (std::size_t i = 0; i < padded; ++i)
-    chunk.inv_m.values[i] = R(1.0 / mass[i < tile.n ? i : 0]);
+  if constexpr (!kBook) {  // the book divides by the mass where it does (add_force)
+    const double* mass = tile.bodies.mass;
+    for (std::size_t i = 0; i < padded; ++i)
+      chunk.inv_m.values[i] = R(1.0 / mass[i < tile.n ? i : 0]);
+  }
   thread_local std::vector<std::size_t> passes;
   advance_chunk<R, kBook>(plan, chunk, vectors, passes);
   // The last pass keeps the accelerations in registers: cleared by the update.
