@@ -12,6 +12,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #if __has_include(<version>)
@@ -108,21 +109,28 @@ std::string printable(std::string_view text, std::size_t max_bytes) {
 
 namespace {
 
-// Optimal string alignment distance (Levenshtein plus adjacent transpositions).
+// Optimal string alignment distance (Levenshtein plus adjacent
+// transpositions), keeping three rows of the table: one allocation a call.
 std::size_t edit_distance(std::string_view a, std::string_view b) {
-  std::vector<std::vector<std::size_t>> d(a.size() + 1, std::vector<std::size_t>(b.size() + 1));
-  for (std::size_t i = 0; i <= a.size(); ++i) d[i][0] = i;
-  for (std::size_t j = 0; j <= b.size(); ++j) d[0][j] = j;
+  const std::size_t width = b.size() + 1;
+  std::vector<std::size_t> rows(3 * width);
+  std::size_t* two_back = rows.data();  // row i - 2
+  std::size_t* previous = two_back + width;
+  std::size_t* current = previous + width;
+  for (std::size_t j = 0; j < width; ++j) previous[j] = j;
   for (std::size_t i = 1; i <= a.size(); ++i) {
-    for (std::size_t j = 1; j <= b.size(); ++j) {
+    current[0] = i;
+    for (std::size_t j = 1; j < width; ++j) {
       const std::size_t cost = a[i - 1] == b[j - 1] ? 0 : 1;
-      d[i][j] = std::min({d[i - 1][j] + 1, d[i][j - 1] + 1, d[i - 1][j - 1] + cost});
+      current[j] = std::min({previous[j] + 1, current[j - 1] + 1, previous[j - 1] + cost});
       if (i > 1 && j > 1 && a[i - 1] == b[j - 2] && a[i - 2] == b[j - 1]) {
-        d[i][j] = std::min(d[i][j], d[i - 2][j - 2] + 1);
+        current[j] = std::min(current[j], two_back[j - 2] + 1);
       }
     }
+    std::swap(two_back, previous);  // the old i - 2 row becomes the next current
+    std::swap(previous, current);
   }
-  return d[a.size()][b.size()];
+  return previous[b.size()];
 }
 
 std::string lower(std::string_view s) {
@@ -141,16 +149,19 @@ std::optional<std::string_view> closest(std::string_view word,
   for (const std::string_view c : candidates) longest = std::max(longest, c.size());
   if (word.size() > longest + 2) return std::nullopt;
   const std::string word_lower = lower(word);
+  const std::size_t limit = word.size() <= 3 ? 1 : 2;
   std::optional<std::string_view> best;
   std::size_t best_distance = std::numeric_limits<std::size_t>::max();
   for (const std::string_view c : candidates) {
-    const std::size_t d = lower(c) == word_lower ? 0 : edit_distance(word_lower, lower(c));
+    // The distance is at least the difference in length: such a candidate can't be the answer.
+    if (std::max(c.size(), word.size()) - std::min(c.size(), word.size()) > limit) continue;
+    const std::string c_lower = lower(c);
+    const std::size_t d = c_lower == word_lower ? 0 : edit_distance(word_lower, c_lower);
     if (d < best_distance) {
       best_distance = d;
       best = c;
     }
   }
-  const std::size_t limit = word.size() <= 3 ? 1 : 2;
   if (best && best_distance <= limit && best_distance < word.size()) return best;
   return std::nullopt;
 }

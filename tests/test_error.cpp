@@ -5,7 +5,10 @@
 
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <string>
+#include <string_view>
+#include <vector>
 
 #include "calder/error.hpp"
 #include "calder/scene.hpp"
@@ -79,6 +82,36 @@ TEST(ErrorKinds, SceneValidationKeepsTheFieldsKind) {
   } catch (const InvalidArgument& e) {
     EXPECT_NE(std::string(e.what()).find("scene s: fields[0]: "), std::string::npos) << e.what();
   }
+}
+
+// The "did you mean" search: a typo is one edit in a word of up to 3
+// characters, two in a longer one (insertions, deletions, substitutions,
+// swaps of neighbours); case alone is no edit.
+TEST(DidYouMean, FindsTheCandidateWithinTheWordsEditLimit) {
+  using calder::detail::closest;
+  const std::vector<std::string_view> fields = {"gravity", "drag", "friction", "wind", "fan"};
+  EXPECT_EQ(closest("gravty", fields), "gravity");    // one deletion
+  EXPECT_EQ(closest("GRAVITY", fields), "gravity");   // case only
+  EXPECT_EQ(closest("grvaity", fields), "gravity");   // neighbours swapped: one edit
+  EXPECT_EQ(closest("dargg", fields), "drag");        // a swap and an insertion: two
+  EXPECT_EQ(closest("fricton", fields), "friction");  // one deletion in a long word
+  EXPECT_EQ(closest("fam", fields), "fan");           // one substitution in a short word
+  EXPECT_EQ(closest("wnd", fields), "wind");
+  // Ties go to the first candidate in the list.
+  EXPECT_EQ(closest("cat", {"bat", "hat"}), "bat");
+}
+
+TEST(DidYouMean, RefusesWhatIsNoTypo) {
+  using calder::detail::closest;
+  const std::vector<std::string_view> fields = {"gravity", "drag", "friction", "wind", "fan"};
+  EXPECT_EQ(closest("fxx", fields), std::nullopt);        // two edits in a short word
+  EXPECT_EQ(closest("gxavxtx", fields), std::nullopt);    // three edits
+  EXPECT_EQ(closest("grav", {"gravity"}), std::nullopt);  // three letters short
+  EXPECT_EQ(closest("x", {"y"}), std::nullopt);           // as many edits as letters
+  EXPECT_EQ(closest("", fields), std::nullopt);
+  EXPECT_EQ(closest("gravity", {}), std::nullopt);
+  // A word of a megabyte is refused by its length, before any table is made.
+  EXPECT_EQ(closest(std::string(1 << 20, 'g'), fields), std::nullopt);
 }
 
 }  // namespace
