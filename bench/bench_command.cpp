@@ -65,10 +65,10 @@ struct Plan {
   // A row whose single call takes longer than min_time (Box2D's 10^6
   // circles) repeats one call at a time, for about this long in all.
   double slow_budget = 10.0;
-  std::int64_t fma_rounds = 4'000'000;          // ~10 ms a call
-  std::size_t learner_slice_pairs = 1'000'000;  // ~25 ms a call
-  double max_rms = 1e-3;                        // the Barnes-Hut accuracy target
-  std::vector<double> finer_thetas{0.45, 0.4, 0.35, 0.3};
+  std::int64_t fma_rounds = 4'000'000;               // ~10 ms a call
+  std::size_t learner_slice_pairs = 1'000'000;       // ~25 ms a call
+  double max_rms = 1e-3;                             // the Barnes-Hut accuracy target
+  std::vector<double> finer_thetas{0.4, 0.35, 0.3};  // below calder::kDefaultTheta
 };
 
 Plan quick_plan() {
@@ -335,7 +335,7 @@ std::string timing_note(const Measured& m, const std::string& unit) {
 
 struct BarnesHutRow {
   std::size_t n = 0;
-  double theta = 0.5;
+  double theta = calder::kDefaultTheta;
   bool float32 = false;
   int threads = 1;
   double rate = 0.0;
@@ -659,25 +659,26 @@ Section barnes_hut_section(const Plan& plan, Runner& runner, Results& results) {
     };
 
     // At the largest N, the theta that meets the accuracy target too.
-    std::vector<double> thetas{0.5};
+    std::vector<double> thetas{calder::kDefaultTheta};
     if (n == plan.bh_n.back()) {
       nb::BarnesHutOptions probe = base;
       double rms = 0.0;
       for (std::size_t k = 0; k <= plan.finer_thetas.size(); ++k) {
-        probe.theta = k == 0 ? 0.5 : plan.finer_thetas[k - 1];
+        probe.theta = k == 0 ? calder::kDefaultTheta : plan.finer_thetas[k - 1];
         runner.status("Barnes-Hut, N = " + count_text(n) + ": the error at theta " +
                       printf_text("%.2g", probe.theta));
         evaluate(probe);
         rms = peers::force_error(exact, ax, ay).rms;
         if (rms < plan.max_rms) break;
       }
-      if (probe.theta != 0.5) {
+      if (probe.theta != calder::kDefaultTheta) {
         thetas.push_back(probe.theta);
         theta_note = "theta " + printf_text("%.2g", probe.theta) + " at N = " + count_text(n) +
-                     ": the largest of 0.5, 0.45, 0.4, ... whose RMS error there is below " +
+                     ": the largest of the default (" + printf_text("%.2g", calder::kDefaultTheta) +
+                     "), 0.4, 0.35, ... whose RMS error there is below " +
                      error_text(plan.max_rms) +
-                     " (0.5 is not: the error is the truncation of the multipole expansion and "
-                     "falls as theta^4, table below).";
+                     " (the default is not: the error is the truncation of the multipole "
+                     "expansion and falls as theta^4, table below).";
       }
     }
 

@@ -43,6 +43,7 @@
 #include <span>
 
 #include "calder/backends.hpp"
+#include "calder/fields.hpp"
 #include "calder/forces.hpp"
 #include "calder/vec2.hpp"
 
@@ -112,9 +113,9 @@ struct BarnesHutOptions : Options {
   // opened). Smaller is more accurate and slower; 0 is the direct sum. In
   // [0, 1]. RMS relative error at 0.5, measured (softening half the mean
   // spacing): uniform disk 4e-4 (N = 2000), 9e-4 (10^4), 1.3e-3 (10^6);
-  // clumps 1.4e-4 (10^4). It falls as theta^4: 0.45 brings the 10^6 disk
-  // to 7e-4, 0.4 to 4.5e-4.
-  double theta = 0.5;
+  // clumps 1.4e-4 (10^4). It falls as theta^4: the default, 0.45, brings the
+  // 10^6 disk to 7.6e-4, 0.4 to 4.5e-4.
+  double theta = kDefaultTheta;
   int leaf_size = 16;    // a node with at most this many bodies is not split
   int group_size = 128;  // bodies of a node with at most this many share one tree walk
 };
