@@ -194,6 +194,20 @@ template <class V, class R>
   return V{} + value;
 }
 
+// mask ? a : b, lane by lane, for a comparison's mask (all ones or zero in
+// each lane). WebAssembly: one v128.bitselect; clang compiles `?:` on a
+// vector to `mask != 0` first (i64x2.eq, v128.not), which V8 keeps.
+template <class M, class V>
+[[gnu::always_inline]] inline V select_lanes(M mask, V a, V b) {
+#if defined(__wasm_simd128__)
+  if constexpr (sizeof(V) == 16) {
+    using Bits = int __attribute__((vector_size(16)));
+    return V(__builtin_wasm_bitselect(Bits(a), Bits(b), Bits(mask)));
+  }
+#endif
+  return mask ? a : b;
+}
+
 // acceleration += force / mass (book) or force * (1 / mass) (fast), in the
 // lanes where apply is set.
 template <class R, bool kBook, class V, class M>
@@ -453,17 +467,14 @@ template <class R, bool kUseRadius>
   const V x = b.x;
   const V y = b.y;
   const auto right = x > walls.right - r;
-  const auto left = (x < r + walls.left) & ~right;  // r + 0 is r, r - inf is -inf
+  const auto left = x < r + walls.left;  // r + 0 is r, r - inf is -inf
   const auto bottom = y > walls.bottom - r;
-  const auto top = (y < r + walls.top) & ~bottom;
-  V nx = right ? walls.right - r : x;
-  nx = left ? r : nx;
-  V ny = bottom ? walls.bottom - r : y;
-  ny = top ? r : ny;
-  b.x = nx;
-  b.y = ny;
-  b.vx = (right | left) ? b.vx * walls.reverse : b.vx;
-  b.vy = (bottom | top) ? b.vy * walls.reverse : b.vy;
+  const auto top = y < r + walls.top;
+  // The right (bottom) wall wins where a body touches both.
+  b.x = select_lanes(right, walls.right - r, select_lanes(left, r, x));
+  b.y = select_lanes(bottom, walls.bottom - r, select_lanes(top, r, y));
+  b.vx = select_lanes(right | left, b.vx * walls.reverse, b.vx);
+  b.vy = select_lanes(bottom | top, b.vy * walls.reverse, b.vy);
 }
 
 // The update (semi-implicit Euler, acceleration cleared) and the bounce.
