@@ -478,11 +478,16 @@ template <class R, bool kUseRadius>
 }
 
 // The update (semi-implicit Euler, acceleration cleared) and the bounce.
+template <class R, bool kUseRadius, bool kBefore>
+[[gnu::always_inline]] inline void update_bounce_at(Block<R>& b, const Walls<R>& walls, R dt) {
+  if constexpr (kBefore) bounce<R, kUseRadius>(b, walls);
+  calder::detail::kick_drift(b.x, b.y, b.vx, b.vy, b.ax, b.ay, splat<typename Simd<R>::V>(dt));
+  if constexpr (!kBefore) bounce<R, kUseRadius>(b, walls);
+}
 template <class R, bool kUseRadius>
 [[gnu::always_inline]] inline void update_bounce(Block<R>& b, const Walls<R>& walls, R dt) {
-  if (walls.before) bounce<R, kUseRadius>(b, walls);
-  calder::detail::kick_drift(b.x, b.y, b.vx, b.vy, b.ax, b.ay, splat<typename Simd<R>::V>(dt));
-  if (!walls.before) bounce<R, kUseRadius>(b, walls);
+  if (walls.before) return update_bounce_at<R, kUseRadius, true>(b, walls, dt);
+  update_bounce_at<R, kUseRadius, false>(b, walls, dt);
 }
 
 // The periodic wrap, lane by lane (rare and branchy: not worth vectorising).
@@ -674,7 +679,11 @@ void advance_chunk(const Plan& plan, Chunk<R>& chunk, std::size_t vectors,
                          dt);
     };
     if (boundary.kind == BoundaryKind::bounce && boundary.use_radius) {
-      last([=](Block<R>& b) CALDER_BULK_INLINE { update_bounce<R, true>(b, walls, dt); });
+      if (walls.before) {
+        last([=](Block<R>& b) CALDER_BULK_INLINE { update_bounce_at<R, true, true>(b, walls, dt); });
+      } else {
+        last([=](Block<R>& b) CALDER_BULK_INLINE { update_bounce_at<R, true, false>(b, walls, dt); });
+      }
     } else {
       last([&](Block<R>& b) CALDER_BULK_INLINE { update(b, boundary, width, height, dt); });
     }
