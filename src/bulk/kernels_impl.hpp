@@ -41,6 +41,14 @@
 // The kernels' lambdas (an op's force, a pass over a chunk) must be inlined
 // into their vector loops: called, a Block goes through memory.
 #define CALDER_BULK_INLINE __attribute__((always_inline))
+// A pass over a chunk (one op's vector loop): in WebAssembly a function of its
+// own, since V8 allocates registers function by function and, in the one large
+// advance_chunk, keeps the loop's counter, bases and constants on the stack.
+#if defined(__wasm__)
+#define CALDER_BULK_PASS __attribute__((noinline))
+#else
+#define CALDER_BULK_PASS CALDER_BULK_INLINE
+#endif
 
 namespace calder::bulk::detail {
 // Internal linkage: each kernel file has its own copies, built with its own
@@ -604,6 +612,24 @@ template <class R, bool kBook>
   return false;
 }
 
+// The ops that need a pass over the chunk, in order, and the fast kernels'
+// constant accelerations, summed into (cx, cy).
+template <class R, bool kBook>
+void plan_passes(const Plan& plan, std::vector<std::size_t>& passes, R& cx, R& cy) {
+  cx = 0;
+  cy = 0;
+  passes.clear();
+  for (std::size_t k = 0; k < plan.ops.size(); ++k) {
+    R gx, gy;
+    if (constant_op<R, kBook>(plan.ops[k], plan.ops[k].template params<R>(), gx, gy)) {
+      cx += gx;
+      cy += gy;
+    } else {
+      passes.push_back(k);
+    }
+  }
+}
+
 // Runs every step of the batch over a chunk of `vectors` vectors. A step is
 // one pass over the chunk per op, each adding its force to the accelerations
 // in the chunk, but the last op's pass also runs the update, in registers,
@@ -621,24 +647,13 @@ void advance_chunk(const Plan& plan, Chunk<R>& chunk, std::size_t vectors,
   const R dt = R(plan.dt);
   const Boundary boundary = plan.boundary;
   const Walls<R> walls(boundary, width, height);
+  R cx, cy;
+  plan_passes<R, kBook>(plan, passes, cx, cy);
+  const V base_x = splat<V>(cx);
+  const V base_y = splat<V>(cy);
   for (int step = 0; step < plan.steps; ++step) {
-    // The fast kernels' constant accelerations, summed; the other ops, in order.
-    R cx = 0;
-    R cy = 0;
-    passes.clear();
-    for (std::size_t k = 0; k < plan.ops.size(); ++k) {
-      R gx, gy;
-      if (constant_op<R, kBook>(plan.ops[k], plan.ops[k].template params<R>(), gx, gy)) {
-        cx += gx;
-        cy += gy;
-      } else {
-        passes.push_back(k);
-      }
-    }
-    const V base_x = splat<V>(cx);
-    const V base_y = splat<V>(cy);
     // Vector v as the first pass of the step sees it.
-    const auto first_load = [&](std::size_t v) CALDER_BULK_INLINE {
+    const auto first_load = [=, &chunk](std::size_t v) CALDER_BULK_INLINE {
       Block<R> b = load_block(chunk, v, step == 0);
       if constexpr (!kBook) {
         b.ax += base_x;
@@ -648,12 +663,20 @@ void advance_chunk(const Plan& plan, Chunk<R>& chunk, std::size_t vectors,
     };
     for (std::size_t q = 0; q + 1 < passes.size(); ++q) {
       const std::size_t k = passes[q];
-      const auto each = [&](auto force) CALDER_BULK_INLINE {
-        for (std::size_t v = 0; v < vectors; ++v) {
-          Block<R> b = q == 0 ? first_load(v) : load_block(chunk, v, true);
-          force(b);
-          __builtin_memcpy(chunk.ax.values + b.at, &b.ax, sizeof(V));
-          __builtin_memcpy(chunk.ay.values + b.at, &b.ay, sizeof(V));
+      const auto each = [&](auto force) CALDER_BULK_PASS {
+        // Local copies of the lambdas, the chunk's address and the bound: the
+        // stores below (memcpy, which may alias anything) would otherwise have
+        // every vector read them again through the closures (WebAssembly).
+        const auto op = force;
+        const auto load_first = first_load;
+        Chunk<R>& to = chunk;
+        const std::size_t n = vectors;
+        const bool first = q == 0;
+        for (std::size_t v = 0; v < n; ++v) {
+          Block<R> b = first ? load_first(v) : load_block(to, v, true);
+          op(b);
+          __builtin_memcpy(to.ax.values + b.at, &b.ax, sizeof(V));
+          __builtin_memcpy(to.ay.values + b.at, &b.ay, sizeof(V));
         }
       };
       apply_op<R, kBook>(each, plan.ops[k], plan.ops[k].template params<R>(), step, width, height,
@@ -662,15 +685,21 @@ void advance_chunk(const Plan& plan, Chunk<R>& chunk, std::size_t vectors,
     // The last pass: the last op, the update, the boundary.
     const bool alone = passes.size() <= 1;
     const auto last = [&](auto update_one) CALDER_BULK_INLINE {
-      const auto each = [&](auto force) CALDER_BULK_INLINE {
-        for (std::size_t v = 0; v < vectors; ++v) {
-          Block<R> b = alone ? first_load(v) : load_block(chunk, v, true);
-          force(b);
-          update_one(b);
-          __builtin_memcpy(chunk.x.values + b.at, &b.x, sizeof(V));
-          __builtin_memcpy(chunk.y.values + b.at, &b.y, sizeof(V));
-          __builtin_memcpy(chunk.vx.values + b.at, &b.vx, sizeof(V));
-          __builtin_memcpy(chunk.vy.values + b.at, &b.vy, sizeof(V));
+      const auto each = [&](auto force) CALDER_BULK_PASS {
+        const auto op = force;  // local copies, as above
+        const auto update_local = update_one;
+        const auto load_first = first_load;
+        Chunk<R>& to = chunk;
+        const std::size_t n = vectors;
+        const bool first = alone;
+        for (std::size_t v = 0; v < n; ++v) {
+          Block<R> b = first ? load_first(v) : load_block(to, v, true);
+          op(b);
+          update_local(b);
+          __builtin_memcpy(to.x.values + b.at, &b.x, sizeof(V));
+          __builtin_memcpy(to.y.values + b.at, &b.y, sizeof(V));
+          __builtin_memcpy(to.vx.values + b.at, &b.vx, sizeof(V));
+          __builtin_memcpy(to.vy.values + b.at, &b.vy, sizeof(V));
         }
       };
       if (passes.empty()) return each([](Block<R>&) CALDER_BULK_INLINE {});
@@ -680,12 +709,14 @@ void advance_chunk(const Plan& plan, Chunk<R>& chunk, std::size_t vectors,
     };
     if (boundary.kind == BoundaryKind::bounce && boundary.use_radius) {
       if (walls.before) {
-        last([=](Block<R>& b) CALDER_BULK_INLINE { update_bounce_at<R, true, true>(b, walls, dt); });
+        last([=](Block<R>& b)
+                 CALDER_BULK_INLINE { update_bounce_at<R, true, true>(b, walls, dt); });
       } else {
-        last([=](Block<R>& b) CALDER_BULK_INLINE { update_bounce_at<R, true, false>(b, walls, dt); });
+        last([=](Block<R>& b)
+                 CALDER_BULK_INLINE { update_bounce_at<R, true, false>(b, walls, dt); });
       }
     } else {
-      last([&](Block<R>& b) CALDER_BULK_INLINE { update(b, boundary, width, height, dt); });
+      last([=](Block<R>& b) CALDER_BULK_INLINE { update(b, boundary, width, height, dt); });
     }
   }
 }
