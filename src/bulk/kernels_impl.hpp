@@ -454,14 +454,14 @@ template <class R, bool kBook>
 template <class R>
 struct Walls {
   R right, bottom;  // the canvas's width and height, or +infinity
-  R left, top;      // 0, or -infinity (added to the radius: the bound)
+  R left, top;      // +0, or +infinity (the radius minus it: the bound, r exactly or -infinity)
   R reverse;
   bool before;
   explicit Walls(const Boundary& boundary, R width, R height)
       : right(boundary.edges.right ? width : std::numeric_limits<R>::infinity()),
         bottom(boundary.edges.bottom ? height : std::numeric_limits<R>::infinity()),
-        left(boundary.edges.left ? R(0) : -std::numeric_limits<R>::infinity()),
-        top(boundary.edges.top ? R(0) : -std::numeric_limits<R>::infinity()),
+        left(boundary.edges.left ? R(0) : std::numeric_limits<R>::infinity()),
+        top(boundary.edges.top ? R(0) : std::numeric_limits<R>::infinity()),
         reverse(R(-boundary.restitution)),
         before(boundary.timing == BoundaryTiming::before_update) {}
 };
@@ -474,13 +474,18 @@ template <class R, bool kUseRadius>
   const V r = kUseRadius ? b.r() : splat<V>(R(0));
   const V x = b.x;
   const V y = b.y;
-  const auto right = x > walls.right - r;
-  const auto left = x < r + walls.left;  // r + 0 is r, r - inf is -inf
-  const auto bottom = y > walls.bottom - r;
-  const auto top = y < r + walls.top;
-  // The right (bottom) wall wins where a body touches both.
-  b.x = select_lanes(right, walls.right - r, select_lanes(left, r, x));
-  b.y = select_lanes(bottom, walls.bottom - r, select_lanes(top, r, y));
+  const V x_max = walls.right - r;
+  const V y_max = walls.bottom - r;
+  const V x_min = r - walls.left;  // r - (+0) is r, also for r = -0
+  const V y_min = r - walls.top;
+  const auto right = x > x_max;
+  const auto left = x < x_min;
+  const auto bottom = y > y_max;
+  const auto top = y < y_min;
+  // The right (bottom) wall wins where a body touches both. (`x < x_min ?
+  // x_min : x` is one f64x2.pmax in WebAssembly.)
+  b.x = select_lanes(right, x_max, x < x_min ? x_min : x);
+  b.y = select_lanes(bottom, y_max, y < y_min ? y_min : y);
   b.vx = select_lanes(right | left, b.vx * walls.reverse, b.vx);
   b.vy = select_lanes(bottom | top, b.vy * walls.reverse, b.vy);
 }
