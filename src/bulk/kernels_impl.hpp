@@ -617,22 +617,65 @@ template <class R, bool kBook>
   return false;
 }
 
-// The ops that need a pass over the chunk, in order, and the fast kernels'
-// constant accelerations, summed into (cx, cy).
+// Hands `last` (a function of an update) the update of the boundary's kind,
+// with the bounce's timing chosen outside the vector loop.
+template <class R, class Last>
+[[gnu::always_inline]] inline void with_update(Last&& last, const Boundary& boundary,
+                                               const Walls<R>& walls, R width, R height, R dt) {
+  if (boundary.kind == BoundaryKind::bounce && boundary.use_radius) {
+    if (walls.before) {
+      return last([=](Block<R>& b)
+                      CALDER_BULK_INLINE { update_bounce_at<R, true, true>(b, walls, dt); });
+    }
+    return last([=](Block<R>& b)
+                    CALDER_BULK_INLINE { update_bounce_at<R, true, false>(b, walls, dt); });
+  }
+  last([=](Block<R>& b) CALDER_BULK_INLINE { update(b, boundary, width, height, dt); });
+}
+
+// WebAssembly: a book kernel's gravity_scaled op just before the last op
+// runs in the last pass (its two divisions beside the last op's), not in a
+// pass of its own: V8's code for a pass costs more per vector than GCC's, in
+// loads, stores and loop overhead. Same operations in the same order.
+#if defined(__wasm__)
+constexpr bool kFuseGravityTarget = true;
+#else
+constexpr bool kFuseGravityTarget = false;
+#endif
+
+// How a step runs the ops: `passes` lists the ops that need a pass over the
+// chunk, in order, the first `own` of them in a loop of their own; the fast
+// kernels' constant accelerations are summed into (cx, cy), and a fused
+// gravity (kFuseGravityTarget) runs in the last pass with (gx, gy).
+template <class R>
+struct Passes {
+  R cx = 0, cy = 0, gx = 0, gy = 0;
+  bool fused = false;
+  std::size_t own = 0;
+};
+
 template <class R, bool kBook>
-void plan_passes(const Plan& plan, std::vector<std::size_t>& passes, R& cx, R& cy) {
-  cx = 0;
-  cy = 0;
+Passes<R> plan_passes(const Plan& plan, std::vector<std::size_t>& passes) {
+  Passes<R> out;
   passes.clear();
   for (std::size_t k = 0; k < plan.ops.size(); ++k) {
     R gx, gy;
     if (constant_op<R, kBook>(plan.ops[k], plan.ops[k].template params<R>(), gx, gy)) {
-      cx += gx;
-      cy += gy;
+      out.cx += gx;
+      out.cy += gy;
     } else {
       passes.push_back(k);
     }
   }
+  out.own = passes.size();
+  if (kBook && kFuseGravityTarget && passes.size() >= 2) {
+    const Op& op = plan.ops[passes[passes.size() - 2]];
+    out.fused = op.kind == OpKind::gravity_scaled;
+    out.gx = out.fused ? op.template params<R>().fx : R(0);
+    out.gy = out.fused ? op.template params<R>().fy : R(0);
+    out.own -= out.fused ? 1 : 0;
+  }
+  return out;
 }
 
 // Runs every step of the batch over a chunk of `vectors` vectors. A step is
@@ -652,10 +695,9 @@ void advance_chunk(const Plan& plan, Chunk<R>& chunk, std::size_t vectors,
   const R dt = R(plan.dt);
   const Boundary boundary = plan.boundary;
   const Walls<R> walls(boundary, width, height);
-  R cx, cy;
-  plan_passes<R, kBook>(plan, passes, cx, cy);
-  const V base_x = splat<V>(cx);
-  const V base_y = splat<V>(cy);
+  const Passes<R> how = plan_passes<R, kBook>(plan, passes);
+  const V base_x = splat<V>(how.cx);
+  const V base_y = splat<V>(how.cy);
   for (int step = 0; step < plan.steps; ++step) {
     // Vector v as the first pass of the step sees it.
     const auto first_load = [=, &chunk](std::size_t v) CALDER_BULK_INLINE {
@@ -666,11 +708,10 @@ void advance_chunk(const Plan& plan, Chunk<R>& chunk, std::size_t vectors,
       }
       return b;
     };
-    for (std::size_t q = 0; q + 1 < passes.size(); ++q) {
+    for (std::size_t q = 0; q + 1 < how.own; ++q) {
       const std::size_t k = passes[q];
       const auto each = [&](auto force) CALDER_BULK_PASS {
-        // Local copies of the lambdas, the chunk's address and the bound: the
-        // stores below (memcpy, which may alias anything) would otherwise have
+        // Local copies: else the stores below (memcpy: may alias anything) make
         // every vector read them again through the closures (WebAssembly).
         const auto op = force;
         const auto load_first = first_load;
@@ -687,11 +728,12 @@ void advance_chunk(const Plan& plan, Chunk<R>& chunk, std::size_t vectors,
       apply_op<R, kBook>(each, plan.ops[k], plan.ops[k].template params<R>(), step, width, height,
                          dt);
     }
-    // The last pass: the last op, the update, the boundary.
-    const bool alone = passes.size() <= 1;
-    const auto last = [&](auto update_one) CALDER_BULK_INLINE {
+    // The last pass: the fused gravity (`before`), the last op, the update, the boundary.
+    const bool alone = how.own <= 1;
+    const auto last = [&](auto update_one, auto before) CALDER_BULK_INLINE {
       const auto each = [&](auto force) CALDER_BULK_PASS {
         const auto op = force;  // local copies, as above
+        const auto before_op = before;
         const auto update_local = update_one;
         const auto load_first = first_load;
         Chunk<R>& to = chunk;
@@ -699,6 +741,7 @@ void advance_chunk(const Plan& plan, Chunk<R>& chunk, std::size_t vectors,
         const bool first = alone;
         for (std::size_t v = 0; v < n; ++v) {
           Block<R> b = first ? load_first(v) : load_block(to, v, true);
+          before_op(b);
           op(b);
           update_local(b);
           __builtin_memcpy(to.x.values + b.at, &b.x, sizeof(V));
@@ -712,17 +755,18 @@ void advance_chunk(const Plan& plan, Chunk<R>& chunk, std::size_t vectors,
       apply_op<R, kBook>(each, plan.ops[k], plan.ops[k].template params<R>(), step, width, height,
                          dt);
     };
-    if (boundary.kind == BoundaryKind::bounce && boundary.use_radius) {
-      if (walls.before) {
-        last([=](Block<R>& b)
-                 CALDER_BULK_INLINE { update_bounce_at<R, true, true>(b, walls, dt); });
-      } else {
-        last([=](Block<R>& b)
-                 CALDER_BULK_INLINE { update_bounce_at<R, true, false>(b, walls, dt); });
-      }
-    } else {
-      last([=](Block<R>& b) CALDER_BULK_INLINE { update(b, boundary, width, height, dt); });
-    }
+    with_update(
+        [&](auto update_one) CALDER_BULK_INLINE {
+          if constexpr (kBook && kFuseGravityTarget) {
+            if (how.fused) {
+              return last(update_one, [=](Block<R>& b) CALDER_BULK_INLINE {
+                op_gravity_scaled<R, kBook>(b, how.gx, how.gy);
+              });
+            }
+          }
+          last(update_one, [](Block<R>&) CALDER_BULK_INLINE {});
+        },
+        boundary, walls, width, height, dt);
   }
 }
 
