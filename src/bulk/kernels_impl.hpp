@@ -41,6 +41,14 @@
 // The kernels' lambdas (an op's force, a pass over a chunk) must be inlined
 // into their vector loops: called, a Block goes through memory.
 #define CALDER_BULK_INLINE __attribute__((always_inline))
+// A pass over a chunk (one op's vector loop): in WebAssembly a function of its
+// own, since V8 allocates registers function by function and, in the one large
+// advance_chunk, keeps the loop's counter, bases and constants on the stack.
+#if defined(__wasm__)
+#define CALDER_BULK_PASS __attribute__((noinline))
+#else
+#define CALDER_BULK_PASS CALDER_BULK_INLINE
+#endif
 
 namespace calder::bulk::detail {
 // Internal linkage: each kernel file has its own copies, built with its own
@@ -192,6 +200,20 @@ template <class R, bool kBook, class V>
 template <class V, class R>
 [[gnu::always_inline]] inline V splat(R value) {
   return V{} + value;
+}
+
+// mask ? a : b, lane by lane, for a comparison's mask (all ones or zero in
+// each lane). WebAssembly: one v128.bitselect; clang compiles `?:` on a
+// vector to `mask != 0` first (i64x2.eq, v128.not), which V8 keeps.
+template <class M, class V>
+[[gnu::always_inline]] inline V select_lanes(M mask, V a, V b) {
+#if defined(__wasm_simd128__)
+  if constexpr (sizeof(V) == 16) {
+    using Bits = int __attribute__((vector_size(16)));
+    return V(__builtin_wasm_bitselect(Bits(a), Bits(b), Bits(mask)));
+  }
+#endif
+  return mask ? a : b;
 }
 
 // acceleration += force / mass (book) or force * (1 / mass) (fast), in the
@@ -432,14 +454,14 @@ template <class R, bool kBook>
 template <class R>
 struct Walls {
   R right, bottom;  // the canvas's width and height, or +infinity
-  R left, top;      // 0, or -infinity (added to the radius: the bound)
+  R left, top;      // +0, or +infinity (the radius minus it: the bound, r exactly or -infinity)
   R reverse;
   bool before;
   explicit Walls(const Boundary& boundary, R width, R height)
       : right(boundary.edges.right ? width : std::numeric_limits<R>::infinity()),
         bottom(boundary.edges.bottom ? height : std::numeric_limits<R>::infinity()),
-        left(boundary.edges.left ? R(0) : -std::numeric_limits<R>::infinity()),
-        top(boundary.edges.top ? R(0) : -std::numeric_limits<R>::infinity()),
+        left(boundary.edges.left ? R(0) : std::numeric_limits<R>::infinity()),
+        top(boundary.edges.top ? R(0) : std::numeric_limits<R>::infinity()),
         reverse(R(-boundary.restitution)),
         before(boundary.timing == BoundaryTiming::before_update) {}
 };
@@ -452,26 +474,33 @@ template <class R, bool kUseRadius>
   const V r = kUseRadius ? b.r() : splat<V>(R(0));
   const V x = b.x;
   const V y = b.y;
-  const auto right = x > walls.right - r;
-  const auto left = (x < r + walls.left) & ~right;  // r + 0 is r, r - inf is -inf
-  const auto bottom = y > walls.bottom - r;
-  const auto top = (y < r + walls.top) & ~bottom;
-  V nx = right ? walls.right - r : x;
-  nx = left ? r : nx;
-  V ny = bottom ? walls.bottom - r : y;
-  ny = top ? r : ny;
-  b.x = nx;
-  b.y = ny;
-  b.vx = (right | left) ? b.vx * walls.reverse : b.vx;
-  b.vy = (bottom | top) ? b.vy * walls.reverse : b.vy;
+  const V x_max = walls.right - r;
+  const V y_max = walls.bottom - r;
+  const V x_min = r - walls.left;  // r - (+0) is r, also for r = -0
+  const V y_min = r - walls.top;
+  const auto right = x > x_max;
+  const auto left = x < x_min;
+  const auto bottom = y > y_max;
+  const auto top = y < y_min;
+  // The right (bottom) wall wins where a body touches both. (`x < x_min ?
+  // x_min : x` is one f64x2.pmax in WebAssembly.)
+  b.x = select_lanes(right, x_max, x < x_min ? x_min : x);
+  b.y = select_lanes(bottom, y_max, y < y_min ? y_min : y);
+  b.vx = select_lanes(right | left, b.vx * walls.reverse, b.vx);
+  b.vy = select_lanes(bottom | top, b.vy * walls.reverse, b.vy);
 }
 
 // The update (semi-implicit Euler, acceleration cleared) and the bounce.
+template <class R, bool kUseRadius, bool kBefore>
+[[gnu::always_inline]] inline void update_bounce_at(Block<R>& b, const Walls<R>& walls, R dt) {
+  if constexpr (kBefore) bounce<R, kUseRadius>(b, walls);
+  calder::detail::kick_drift(b.x, b.y, b.vx, b.vy, b.ax, b.ay, splat<typename Simd<R>::V>(dt));
+  if constexpr (!kBefore) bounce<R, kUseRadius>(b, walls);
+}
 template <class R, bool kUseRadius>
 [[gnu::always_inline]] inline void update_bounce(Block<R>& b, const Walls<R>& walls, R dt) {
-  if (walls.before) bounce<R, kUseRadius>(b, walls);
-  calder::detail::kick_drift(b.x, b.y, b.vx, b.vy, b.ax, b.ay, splat<typename Simd<R>::V>(dt));
-  if (!walls.before) bounce<R, kUseRadius>(b, walls);
+  if (walls.before) return update_bounce_at<R, kUseRadius, true>(b, walls, dt);
+  update_bounce_at<R, kUseRadius, false>(b, walls, dt);
 }
 
 // The periodic wrap, lane by lane (rare and branchy: not worth vectorising).
@@ -588,6 +617,67 @@ template <class R, bool kBook>
   return false;
 }
 
+// Hands `last` (a function of an update) the update of the boundary's kind,
+// with the bounce's timing chosen outside the vector loop.
+template <class R, class Last>
+[[gnu::always_inline]] inline void with_update(Last&& last, const Boundary& boundary,
+                                               const Walls<R>& walls, R width, R height, R dt) {
+  if (boundary.kind == BoundaryKind::bounce && boundary.use_radius) {
+    if (walls.before) {
+      return last([=](Block<R>& b)
+                      CALDER_BULK_INLINE { update_bounce_at<R, true, true>(b, walls, dt); });
+    }
+    return last([=](Block<R>& b)
+                    CALDER_BULK_INLINE { update_bounce_at<R, true, false>(b, walls, dt); });
+  }
+  last([=](Block<R>& b) CALDER_BULK_INLINE { update(b, boundary, width, height, dt); });
+}
+
+// WebAssembly: a book kernel's gravity_scaled op just before the last op
+// runs in the last pass (its two divisions beside the last op's), not in a
+// pass of its own: V8's code for a pass costs more per vector than GCC's, in
+// loads, stores and loop overhead. Same operations in the same order.
+#if defined(__wasm__)
+constexpr bool kFuseGravityTarget = true;
+#else
+constexpr bool kFuseGravityTarget = false;
+#endif
+
+// How a step runs the ops: `passes` lists the ops that need a pass over the
+// chunk, in order, the first `own` of them in a loop of their own; the fast
+// kernels' constant accelerations are summed into (cx, cy), and a fused
+// gravity (kFuseGravityTarget) runs in the last pass with (gx, gy).
+template <class R>
+struct Passes {
+  R cx = 0, cy = 0, gx = 0, gy = 0;
+  bool fused = false;
+  std::size_t own = 0;
+};
+
+template <class R, bool kBook>
+Passes<R> plan_passes(const Plan& plan, std::vector<std::size_t>& passes) {
+  Passes<R> out;
+  passes.clear();
+  for (std::size_t k = 0; k < plan.ops.size(); ++k) {
+    R gx, gy;
+    if (constant_op<R, kBook>(plan.ops[k], plan.ops[k].template params<R>(), gx, gy)) {
+      out.cx += gx;
+      out.cy += gy;
+    } else {
+      passes.push_back(k);
+    }
+  }
+  out.own = passes.size();
+  if (kBook && kFuseGravityTarget && passes.size() >= 2) {
+    const Op& op = plan.ops[passes[passes.size() - 2]];
+    out.fused = op.kind == OpKind::gravity_scaled;
+    out.gx = out.fused ? op.template params<R>().fx : R(0);
+    out.gy = out.fused ? op.template params<R>().fy : R(0);
+    out.own -= out.fused ? 1 : 0;
+  }
+  return out;
+}
+
 // Runs every step of the batch over a chunk of `vectors` vectors. A step is
 // one pass over the chunk per op, each adding its force to the accelerations
 // in the chunk, but the last op's pass also runs the update, in registers,
@@ -605,24 +695,12 @@ void advance_chunk(const Plan& plan, Chunk<R>& chunk, std::size_t vectors,
   const R dt = R(plan.dt);
   const Boundary boundary = plan.boundary;
   const Walls<R> walls(boundary, width, height);
+  const Passes<R> how = plan_passes<R, kBook>(plan, passes);
+  const V base_x = splat<V>(how.cx);
+  const V base_y = splat<V>(how.cy);
   for (int step = 0; step < plan.steps; ++step) {
-    // The fast kernels' constant accelerations, summed; the other ops, in order.
-    R cx = 0;
-    R cy = 0;
-    passes.clear();
-    for (std::size_t k = 0; k < plan.ops.size(); ++k) {
-      R gx, gy;
-      if (constant_op<R, kBook>(plan.ops[k], plan.ops[k].template params<R>(), gx, gy)) {
-        cx += gx;
-        cy += gy;
-      } else {
-        passes.push_back(k);
-      }
-    }
-    const V base_x = splat<V>(cx);
-    const V base_y = splat<V>(cy);
     // Vector v as the first pass of the step sees it.
-    const auto first_load = [&](std::size_t v) CALDER_BULK_INLINE {
+    const auto first_load = [=, &chunk](std::size_t v) CALDER_BULK_INLINE {
       Block<R> b = load_block(chunk, v, step == 0);
       if constexpr (!kBook) {
         b.ax += base_x;
@@ -630,31 +708,46 @@ void advance_chunk(const Plan& plan, Chunk<R>& chunk, std::size_t vectors,
       }
       return b;
     };
-    for (std::size_t q = 0; q + 1 < passes.size(); ++q) {
+    for (std::size_t q = 0; q + 1 < how.own; ++q) {
       const std::size_t k = passes[q];
-      const auto each = [&](auto force) CALDER_BULK_INLINE {
-        for (std::size_t v = 0; v < vectors; ++v) {
-          Block<R> b = q == 0 ? first_load(v) : load_block(chunk, v, true);
-          force(b);
-          __builtin_memcpy(chunk.ax.values + b.at, &b.ax, sizeof(V));
-          __builtin_memcpy(chunk.ay.values + b.at, &b.ay, sizeof(V));
+      const auto each = [&](auto force) CALDER_BULK_PASS {
+        // Local copies: else the stores below (memcpy: may alias anything) make
+        // every vector read them again through the closures (WebAssembly).
+        const auto op = force;
+        const auto load_first = first_load;
+        Chunk<R>& to = chunk;
+        const std::size_t n = vectors;
+        const bool first = q == 0;
+        for (std::size_t v = 0; v < n; ++v) {
+          Block<R> b = first ? load_first(v) : load_block(to, v, true);
+          op(b);
+          __builtin_memcpy(to.ax.values + b.at, &b.ax, sizeof(V));
+          __builtin_memcpy(to.ay.values + b.at, &b.ay, sizeof(V));
         }
       };
       apply_op<R, kBook>(each, plan.ops[k], plan.ops[k].template params<R>(), step, width, height,
                          dt);
     }
-    // The last pass: the last op, the update, the boundary.
-    const bool alone = passes.size() <= 1;
-    const auto last = [&](auto update_one) CALDER_BULK_INLINE {
-      const auto each = [&](auto force) CALDER_BULK_INLINE {
-        for (std::size_t v = 0; v < vectors; ++v) {
-          Block<R> b = alone ? first_load(v) : load_block(chunk, v, true);
-          force(b);
-          update_one(b);
-          __builtin_memcpy(chunk.x.values + b.at, &b.x, sizeof(V));
-          __builtin_memcpy(chunk.y.values + b.at, &b.y, sizeof(V));
-          __builtin_memcpy(chunk.vx.values + b.at, &b.vx, sizeof(V));
-          __builtin_memcpy(chunk.vy.values + b.at, &b.vy, sizeof(V));
+    // The last pass: the fused gravity (`before`), the last op, the update, the boundary.
+    const bool alone = how.own <= 1;
+    const auto last = [&](auto update_one, auto before) CALDER_BULK_INLINE {
+      const auto each = [&](auto force) CALDER_BULK_PASS {
+        const auto op = force;  // local copies, as above
+        const auto before_op = before;
+        const auto update_local = update_one;
+        const auto load_first = first_load;
+        Chunk<R>& to = chunk;
+        const std::size_t n = vectors;
+        const bool first = alone;
+        for (std::size_t v = 0; v < n; ++v) {
+          Block<R> b = first ? load_first(v) : load_block(to, v, true);
+          before_op(b);
+          op(b);
+          update_local(b);
+          __builtin_memcpy(to.x.values + b.at, &b.x, sizeof(V));
+          __builtin_memcpy(to.y.values + b.at, &b.y, sizeof(V));
+          __builtin_memcpy(to.vx.values + b.at, &b.vx, sizeof(V));
+          __builtin_memcpy(to.vy.values + b.at, &b.vy, sizeof(V));
         }
       };
       if (passes.empty()) return each([](Block<R>&) CALDER_BULK_INLINE {});
@@ -662,11 +755,18 @@ void advance_chunk(const Plan& plan, Chunk<R>& chunk, std::size_t vectors,
       apply_op<R, kBook>(each, plan.ops[k], plan.ops[k].template params<R>(), step, width, height,
                          dt);
     };
-    if (boundary.kind == BoundaryKind::bounce && boundary.use_radius) {
-      last([=](Block<R>& b) CALDER_BULK_INLINE { update_bounce<R, true>(b, walls, dt); });
-    } else {
-      last([&](Block<R>& b) CALDER_BULK_INLINE { update(b, boundary, width, height, dt); });
-    }
+    with_update(
+        [&](auto update_one) CALDER_BULK_INLINE {
+          if constexpr (kBook && kFuseGravityTarget) {
+            if (how.fused) {
+              return last(update_one, [=](Block<R>& b) CALDER_BULK_INLINE {
+                op_gravity_scaled<R, kBook>(b, how.gx, how.gy);
+              });
+            }
+          }
+          last(update_one, [](Block<R>&) CALDER_BULK_INLINE {});
+        },
+        boundary, walls, width, height, dt);
   }
 }
 
