@@ -5,7 +5,6 @@
 #include "calder/bulk.hpp"
 
 #include <algorithm>
-#include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <span>
@@ -27,27 +26,31 @@ namespace {
 // microseconds, comparable to waking a thread.
 constexpr std::size_t kMinBodiesPerThread = 2 * kTile;
 
-// True when the positions and velocities of bodies [first, first + count) are
-// all finite: no value with every exponent bit set (infinities, NaN). Integer
-// and branch-free, so it vectorises; the scalar early-exit loop runs only to
-// find the first bad body.
-bool all_finite(const BodyColumnsOf<std::span<double>, std::span<const double>>& b,
-                std::size_t first, std::size_t count) {
+// The first of bodies [first, first + count) whose position or velocity is
+// not finite (an infinity or NaN: every exponent bit set), or first + count.
+// The common case, all finite, is one branch-free pass that vectorises; the
+// scan for the body runs only when there is one.
+std::size_t first_non_finite(const BodyColumnsOf<std::span<double>, std::span<const double>>& b,
+                             std::size_t first, std::size_t count) {
   const double* x = b.x.data() + first;
   const double* y = b.y.data() + first;
   const double* vx = b.vx.data() + first;
   const double* vy = b.vy.data() + first;
-  std::uint64_t bad = 0;
   // 1 when the 11 exponent bits are all set (their sum with 1 carries into bit 11), else 0.
   const auto non_finite = [](double v) {
     std::uint64_t bits = 0;
     std::memcpy(&bits, &v, sizeof bits);  // std::bit_cast is not in Emscripten's libc++ 13
     return (((bits >> 52) & 0x7ff) + 1) >> 11;
   };
-  for (std::size_t i = 0; i < count; ++i) {
-    bad |= non_finite(x[i]) | non_finite(y[i]) | non_finite(vx[i]) | non_finite(vy[i]);
-  }
-  return bad == 0;
+  const auto bad = [&](std::size_t i) {
+    return non_finite(x[i]) | non_finite(y[i]) | non_finite(vx[i]) | non_finite(vy[i]);
+  };
+  std::uint64_t any = 0;
+  for (std::size_t i = 0; i < count; ++i) any |= bad(i);
+  if (any == 0) return first + count;
+  std::size_t i = 0;
+  while (bad(i) == 0) ++i;
+  return first + i;
 }
 
 }  // namespace
@@ -88,16 +91,8 @@ bool step_batch(const StepBatch& batch, std::string* why_not) {
     for_each_column([first](const char*, auto*& to, auto column) { to = column.data() + first; },
                     tile.bodies, batch.bodies);
     advance(plan, tile);
-    if (!all_finite(batch.bodies, first, count)) {
-      const auto& b = batch.bodies;
-      for (std::size_t i = first; i < first + count; ++i) {
-        if (!std::isfinite(b.x[i]) || !std::isfinite(b.y[i]) || !std::isfinite(b.vx[i]) ||
-            !std::isfinite(b.vy[i])) {
-          bad[static_cast<std::size_t>(t)] = i;
-          break;
-        }
-      }
-    }
+    const std::size_t i = first_non_finite(batch.bodies, first, count);
+    if (i < first + count) bad[static_cast<std::size_t>(t)] = i;
   };
   // Tiles are independent: which thread runs one changes no bit of it.
 #if defined(_OPENMP)

@@ -263,6 +263,20 @@ template <class R, bool kBook>
   }
 }
 
+// The book's force against the motion (calder::drag, calder::friction): -v
+// set to `magnitude` (normalize multiplies by 1 / |v| unless |v| = 0), limited
+// so that it never reverses the motion within dt when asked, added where apply
+// is set.
+template <class R, bool kNeverReverse, class V, class M>
+[[gnu::always_inline]] inline void add_against_motion(Block<R>& b, M apply, V vx, V vy, V speed,
+                                                      V magnitude, R dt) {
+  const V inv = R(1) / (speed != R(0) ? speed : splat<V>(R(1)));
+  V fx = -vx * inv * magnitude;
+  V fy = -vy * inv * magnitude;
+  if constexpr (kNeverReverse) limit(fx, fy, b.m() * speed / dt);
+  add_force<R, true>(b, apply, fx, fy);
+}
+
 // Quadratic drag -c |v| v area, where strictly inside the op's region
 // (everywhere: on every body, as the plain loops' Drag).
 template <class R, bool kBook, bool kNeverReverse, bool kEverywhere>
@@ -279,12 +293,8 @@ template <class R, bool kBook, bool kNeverReverse, bool kEverywhere>
     if constexpr (kBook) {
       // calder::drag: magnitude c * speed * speed * area; -v set to it
       // (normalize multiplies by 1 / |v| unless |v| = 0).
-      const V magnitude = p.c * speed * speed * b.area();
-      const V inv = R(1) / (speed != R(0) ? speed : splat<V>(R(1)));
-      V fx = -vx * inv * magnitude;
-      V fy = -vy * inv * magnitude;
-      if constexpr (kNeverReverse) limit(fx, fy, b.m() * speed / dt);
-      add_force<R, true>(b, inside, fx, fy);
+      add_against_motion<R, kNeverReverse>(b, inside, vx, vy, speed, p.c * speed * speed * b.area(),
+                                           dt);
     } else {
       // a = -k v with k = c area |v| / m; never reversing: k dt <= 1.
       V k = p.c * b.area() * speed * b.inv_m();
@@ -324,12 +334,7 @@ template <class R, bool kBook, bool kNeverReverse>
     const V mu = own != own ? splat<V>(p.c) : own;  // NaN: no coefficient of its own
     const V speed = vlength<R, kBook>(vx * vx + vy * vy);
     if constexpr (kBook) {
-      const V magnitude = mu * p.normal;
-      const V inv = R(1) / (speed != R(0) ? speed : splat<V>(R(1)));
-      V fx = -vx * inv * magnitude;
-      V fy = -vy * inv * magnitude;
-      if constexpr (kNeverReverse) limit(fx, fy, b.m() * speed / dt);
-      add_force<R, true>(b, touching, fx, fy);
+      add_against_motion<R, kNeverReverse>(b, touching, vx, vy, speed, mu * p.normal, dt);
     } else {
       const V moving = speed != R(0) ? speed : splat<V>(R(1));
       V k = speed != R(0) ? mu * p.normal * b.inv_m() / moving : splat<V>(R(0));
