@@ -502,11 +502,6 @@ template <class R, bool kUseRadius, bool kBefore>
   calder::detail::kick_drift(b.x, b.y, b.vx, b.vy, b.ax, b.ay, splat<typename Simd<R>::V>(dt));
   if constexpr (!kBefore) bounce<R, kUseRadius>(b, walls);
 }
-template <class R, bool kUseRadius>
-[[gnu::always_inline]] inline void update_bounce(Block<R>& b, const Walls<R>& walls, R dt) {
-  if (walls.before) return update_bounce_at<R, kUseRadius, true>(b, walls, dt);
-  update_bounce_at<R, kUseRadius, false>(b, walls, dt);
-}
 
 // The periodic wrap, lane by lane (rare and branchy: not worth vectorising).
 template <class R>
@@ -524,14 +519,15 @@ template <class R>
   }
 }
 
+// The update and the boundary but the bounce on the radius (with_update
+// gives that its own loops).
 template <class R>
-[[gnu::always_inline]] inline void update(Block<R>& b, const Boundary& boundary, R width, R height,
-                                          R dt) {
+[[gnu::always_inline]] inline void update(Block<R>& b, const Boundary& boundary,
+                                          const Walls<R>& walls, R width, R height, R dt) {
   using V = typename Simd<R>::V;
   if (boundary.kind == BoundaryKind::bounce) {
-    const Walls<R> walls(boundary, width, height);
-    if (boundary.use_radius) return update_bounce<R, true>(b, walls, dt);
-    return update_bounce<R, false>(b, walls, dt);
+    if (walls.before) return update_bounce_at<R, false, true>(b, walls, dt);
+    return update_bounce_at<R, false, false>(b, walls, dt);
   }
   const bool wrapping = boundary.kind == BoundaryKind::wrap;
   const bool before = boundary.timing == BoundaryTiming::before_update;
@@ -635,7 +631,7 @@ template <class R, class Last>
     return last([=](Block<R>& b)
                     CALDER_BULK_INLINE { update_bounce_at<R, true, false>(b, walls, dt); });
   }
-  last([=](Block<R>& b) CALDER_BULK_INLINE { update(b, boundary, width, height, dt); });
+  last([=](Block<R>& b) CALDER_BULK_INLINE { update(b, boundary, walls, width, height, dt); });
 }
 
 // WebAssembly: a book kernel's gravity_scaled op just before the last op
