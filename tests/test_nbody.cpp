@@ -655,6 +655,48 @@ TEST(NbodyBarnesHut, LargeTreesAreBuiltInParallelPartsDeterministically) {
   EXPECT_LT(std::sqrt(sum / count), 1e-3);
 }
 
+TEST(NbodyBarnesHut, ClumpedAndCoincidentBodiesAreSortedAndSplitForAnyThreadCount) {
+  // 40,000 bodies in a clump of radius 1 and one body 1,000 away: the root
+  // square is set by the far body, so the clump's Morton codes share their
+  // top digits (a run too long for one thread's cache, which the threads
+  // split digit by digit), and 500 of them sit on one point (equal codes,
+  // kept in index order, in one leaf). The same tree and bit-identical
+  // results for any number of threads; a sample against the reference sum.
+  System s = disk(40000, 23, 1.0);
+  for (std::size_t i = 0; i < s.size(); i += 80) {
+    s.x[i] = 0.25;
+    s.y[i] = -0.5;
+  }
+  s.x.push_back(1000.0);
+  s.y.push_back(1000.0);
+  s.m.push_back(1.0);
+  nb::BarnesHutOptions b;
+  static_cast<nb::Options&>(b) = plummer(0.01);
+  nb::BarnesHut solver;
+  Field one{std::vector<double>(s.size()), std::vector<double>(s.size())};
+  b.threads = 1;
+  solver.accelerations(s.x, s.y, s.m, one.ax, one.ay, b);
+  const nb::BarnesHutStats stats = solver.stats();
+  EXPECT_GE(stats.depth, 10);  // the clump lies 10 levels below the root
+  for (const int threads : {2, 3}) {
+    b.threads = threads;
+    Field f{std::vector<double>(s.size()), std::vector<double>(s.size())};
+    solver.accelerations(s.x, s.y, s.m, f.ax, f.ay, b);
+    EXPECT_TRUE(bit_identical(one, f)) << "threads " << threads;
+    EXPECT_EQ(solver.stats().nodes, stats.nodes);
+    EXPECT_EQ(solver.stats().interactions, stats.interactions);
+  }
+  double sum = 0.0;
+  int count = 0;
+  for (std::size_t i = 0; i < s.size(); i += 997) {  // the coincident ones among them
+    const Vec2 a = nb::reference_acceleration(s.x, s.y, s.m, i, plummer(0.01));
+    const double rel = std::hypot(one.ax[i] - a.x, one.ay[i] - a.y) / a.mag();
+    sum += rel * rel;
+    ++count;
+  }
+  EXPECT_LT(std::sqrt(sum / count), 1e-3);
+}
+
 TEST(NbodyBarnesHut, SolverReuseGivesTheSameResults) {
   nb::BarnesHut solver;
   nb::BarnesHutOptions b;

@@ -135,9 +135,9 @@ struct BarnesHutStats {
 // A Barnes-Hut solver that keeps its tree and buffers between calls (the
 // allocation-free way to evaluate accelerations every step).
 //
-// Build: bounding square; Morton codes (2 x 24 bits); a stable LSD radix sort
-// (ties in index order; threads sort their own slices, so the order does not
-// depend on their number); a quadtree of the sorted order, each node the
+// Build: bounding square; Morton codes (2 x 24 bits); a radix sort (ties in
+// index order: one order, whatever the number of threads that split the
+// work); a quadtree of the sorted order, each node the
 // smallest cell holding its bodies, split until it has at most leaf_size
 // bodies (or all share one code: coincident bodies); per node mass, centre of
 // mass and second and third moments. Walk: for each group of <= group_size

@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: MIT
 // Barnes-Hut, the build: bounding square; 48-bit Morton codes (24 bits per
-// axis); a stable LSD radix sort (6 passes of 8 bits, threads scatter their
-// own slices, so the order is the same for any thread count); the tree,
+// axis); their radix sort (8-bit digits: the threads split the keys by their
+// top digits until the ranges fit in cache, then sort ranges on their own;
+// the order is unique, so the same for any thread count); the tree,
 // depth first, each node the smallest quadtree cell holding its bodies; mass,
 // centre of mass and second and third moments bottom up (parallel axis
 // theorem). The top of the tree is split serially down to about kSubtrees
@@ -78,6 +79,70 @@ Slice my_slice(std::size_t n) {
   return Slice{t, nt, n * t / nt, n * (t + 1) / nt};
 }
 
+// Keys with their indices, side by side.
+struct SortRun {
+  std::uint64_t* keys;
+  std::uint32_t* order;
+};
+
+// `from` into `out` sorted by key, equal keys in their order (short runs).
+inline void insertion_sort(SortRun from, SortRun out, std::size_t length) {
+  for (std::size_t i = 0; i < length; ++i) {
+    const std::uint64_t key = from.keys[i];
+    const std::uint32_t index = from.order[i];
+    std::size_t j = i;
+    for (; j > 0 && out.keys[j - 1] > key; --j) {
+      out.keys[j] = out.keys[j - 1];
+      out.order[j] = out.order[j - 1];
+    }
+    out.keys[j] = key;
+    out.order[j] = index;
+  }
+}
+
+// Sorts `length` keys of `from` (with their indices) by their lowest
+// `digits` digits into `out`, stably, using `spare` (as long): a counting
+// pass by the top digit into spare, then each bucket the same way (from
+// becomes its spare); short runs by insertion.
+void sort_in_cache(SortRun from, SortRun spare, SortRun out, std::size_t length, int digits) {
+  constexpr std::size_t kMask = bh::kRadixBuckets - 1;
+  constexpr std::size_t kInsertion = 32;
+  while (digits > 0 && length > kInsertion) {
+    const int shift = (digits - 1) * bh::kRadixBits;
+    std::uint32_t counts[bh::kRadixBuckets] = {};
+    for (std::size_t i = 0; i < length; ++i) ++counts[(from.keys[i] >> shift) & kMask];
+    --digits;
+    if (counts[(from.keys[0] >> shift) & kMask] == length) continue;  // one bucket: next digit
+    std::uint32_t offset = 0;
+    for (std::uint32_t& c : counts) {
+      const std::uint32_t here = c;
+      c = offset;
+      offset += here;
+    }
+    std::uint32_t starts[bh::kRadixBuckets];
+    std::copy(counts, counts + bh::kRadixBuckets, starts);
+    for (std::size_t i = 0; i < length; ++i) {
+      const std::uint32_t to = counts[(from.keys[i] >> shift) & kMask]++;
+      spare.keys[to] = from.keys[i];
+      spare.order[to] = from.order[i];
+    }
+    for (std::size_t b = 0; b < bh::kRadixBuckets; ++b) {
+      const std::uint32_t first = starts[b];
+      const std::uint32_t count = counts[b] - first;  // counts[b]: the bucket's end now
+      if (count <= kInsertion) {                      // most buckets: no call
+        insertion_sort(SortRun{spare.keys + first, spare.order + first},
+                       SortRun{out.keys + first, out.order + first}, count);
+        continue;
+      }
+      sort_in_cache(SortRun{spare.keys + first, spare.order + first},
+                    SortRun{from.keys + first, from.order + first},
+                    SortRun{out.keys + first, out.order + first}, count, digits);
+    }
+    return;
+  }
+  insertion_sort(from, out, length);
+}
+
 }  // namespace
 
 void BarnesHut::Workspace::build(std::span<const double> x, std::span<const double> y,
@@ -115,7 +180,7 @@ void BarnesHut::Workspace::bound(std::span<const double> x, std::span<const doub
   if (!(side > 0.0)) side = 1.0;  // one point (or one body)
 }
 
-// Morton keys, their radix sort, and the bodies gathered in Morton order.
+// Morton keys, their sort, and the bodies gathered in Morton order.
 void BarnesHut::Workspace::sort_bodies(std::span<const double> x, std::span<const double> y,
                                        std::span<const double> mass, [[maybe_unused]] int team) {
   const std::size_t n = x.size();
@@ -131,7 +196,10 @@ void BarnesHut::Workspace::sort_bodies(std::span<const double> x, std::span<cons
   sx.resize(n);
   sy.resize(n);
   sm.resize(n);
-  radix_counts.assign(static_cast<std::size_t>(team) * bh::kRadixBuckets, 0);
+  radix_counts.resize(static_cast<std::size_t>(team) * bh::kRadixBuckets);
+  if (sort_scratch.size() < static_cast<std::size_t>(team)) {
+    sort_scratch.resize(static_cast<std::size_t>(team));
+  }
   double heaviest = 0.0;
 #if defined(_OPENMP)
 #pragma omp parallel num_threads(team) reduction(max : heaviest)
@@ -142,7 +210,7 @@ void BarnesHut::Workspace::sort_bodies(std::span<const double> x, std::span<cons
       keys[i] = spread(quantise(x[i], x0)) | (spread(quantise(y[i], y0)) << 1);
       order[i] = static_cast<std::uint32_t>(i);
     }
-    radix_sort_slice(s.t, s.nt, s.lo, s.hi);
+    sort_keys(s.t, s.nt);
     for (std::size_t r = s.lo; r < s.hi; ++r) {
       const std::uint32_t i = order[r];
       sx[r] = x[i];
@@ -154,57 +222,114 @@ void BarnesHut::Workspace::sort_bodies(std::span<const double> x, std::span<cons
   max_mass = heaviest;
 }
 
-// LSD radix sort of (key, index), called by every thread of a team with its
-// slice [lo, hi): stable, so equal keys stay in index order; slice t of the
-// input goes, in order, after slices 0 .. t-1 of each bucket, so the result
-// does not depend on the number of threads.
-void BarnesHut::Workspace::radix_sort_slice(std::size_t t, std::size_t nt, std::size_t lo,
-                                            std::size_t hi) {
+// Sorts (keys, order) by key, equal keys in index order (order holds 0, 1,
+// ... on entry), called by every thread t of a team of nt. A most
+// significant digit first radix sort: the team splits a range by its next
+// digit (a stable counting pass, thread slices in order) until the ranges fit
+// in a thread's cache, then each thread sorts whole ranges on its own by
+// their remaining digits (least significant first, stable). The sorted order
+// is unique (key, then index), so it does not depend on the number of
+// threads or on how the work was split.
+void BarnesHut::Workspace::sort_keys(std::size_t t, std::size_t nt) {
+#if defined(_OPENMP)
+#pragma omp single
+#endif
+  {
+    sort_large.assign(
+        1, bh::SortRange{0, static_cast<std::uint32_t>(keys.size()), bh::kRadixPasses, false});
+    sort_small.clear();
+  }
+  for (std::size_t r = 0; r < sort_large.size(); ++r) {
+    const bh::SortRange range = sort_large[r];  // a copy: the single below may grow the list
+    split_range(range, t, nt);
+  }
+  const auto ranges = static_cast<std::ptrdiff_t>(sort_small.size());
+#if defined(_OPENMP)
+#pragma omp for schedule(dynamic, 1)
+#endif
+  for (std::ptrdiff_t r = 0; r < ranges; ++r) {
+    sort_range(sort_small[static_cast<std::size_t>(r)], sort_scratch[t]);
+  }
+}
+
+// The team's pass over `range` by its top remaining digit: into the other
+// buffer, each sub-range then listed as large (split again), small (sorted
+// by one thread) or done.
+void BarnesHut::Workspace::split_range(const bh::SortRange& range, std::size_t t, std::size_t nt) {
   constexpr std::size_t kMask = bh::kRadixBuckets - 1;
-  const std::size_t n = keys.size();
-  bool skip = false;  // one thread writes it between barriers
-  for (int pass = 0; pass < bh::kRadixPasses; ++pass) {
-    const int shift = pass * bh::kRadixBits;
-    std::size_t* counts = radix_counts.data() + t * bh::kRadixBuckets;
-    std::fill(counts, counts + bh::kRadixBuckets, std::size_t{0});
-    for (std::size_t i = lo; i < hi; ++i) ++counts[(keys[i] >> shift) & kMask];
+  const int shift = (range.digits - 1) * bh::kRadixBits;
+  const std::size_t length = range.end - range.begin;
+  const std::size_t lo = range.begin + length * t / nt;
+  const std::size_t hi = range.begin + length * (t + 1) / nt;
+  const std::uint64_t* from_keys = range.in_tmp ? keys_tmp.data() : keys.data();
+  const std::uint32_t* from_order = range.in_tmp ? order_tmp.data() : order.data();
+  std::uint64_t* to_keys = range.in_tmp ? keys.data() : keys_tmp.data();
+  std::uint32_t* to_order = range.in_tmp ? order.data() : order_tmp.data();
+  std::size_t* counts = radix_counts.data() + t * bh::kRadixBuckets;
+  std::fill(counts, counts + bh::kRadixBuckets, std::size_t{0});
+  for (std::size_t i = lo; i < hi; ++i) ++counts[(from_keys[i] >> shift) & kMask];
+  bool skip = false;  // every key has the same digit: nothing moves
 #if defined(_OPENMP)
 #pragma omp barrier
 #pragma omp single copyprivate(skip)
 #endif
-    {
-      // Exclusive prefix sums, bucket-major then thread; skip a pass in
-      // which every key has the same digit.
-      std::size_t offset = 0;
-      skip = false;
-      for (std::size_t b = 0; b < bh::kRadixBuckets; ++b) {
-        std::size_t bucket = 0;
-        for (std::size_t u = 0; u < nt; ++u) {
-          std::size_t& c = radix_counts[u * bh::kRadixBuckets + b];
-          const std::size_t here = c;
-          c = offset;
-          offset += here;
-          bucket += here;
-        }
-        if (bucket == n) skip = true;
+  {
+    // Exclusive prefix sums, bucket-major then thread; each bucket's range listed.
+    std::size_t offset = range.begin;
+    for (std::size_t b = 0; b < bh::kRadixBuckets; ++b) {
+      const std::size_t first = offset;
+      for (std::size_t u = 0; u < nt; ++u) {
+        std::size_t& c = radix_counts[u * bh::kRadixBuckets + b];
+        const std::size_t here = c;
+        c = offset;
+        offset += here;
       }
+      if (offset - first == length) skip = true;
     }
-    if (!skip) {
-      for (std::size_t i = lo; i < hi; ++i) {
-        const std::size_t to = counts[(keys[i] >> shift) & kMask]++;
-        keys_tmp[to] = keys[i];
-        order_tmp[to] = order[i];
-      }
-    }
-#if defined(_OPENMP)
-#pragma omp barrier
-#pragma omp single
-#endif
-    if (!skip) {
-      keys.swap(keys_tmp);
-      order.swap(order_tmp);
+    const bool moved_to_tmp = skip ? range.in_tmp : !range.in_tmp;
+    offset = range.begin;
+    for (std::size_t b = 0; b < bh::kRadixBuckets; ++b) {
+      const std::size_t last = b + 1 < bh::kRadixBuckets ? radix_counts[b + 1] : range.end;
+      const bh::SortRange sub{static_cast<std::uint32_t>(offset), static_cast<std::uint32_t>(last),
+                              range.digits - 1, moved_to_tmp};
+      offset = last;
+      if (sub.end == sub.begin || (sub.digits == 0 && !sub.in_tmp)) continue;
+      const bool large = sub.end - sub.begin > bh::kSortInCache && sub.digits > 0;
+      (large ? sort_large : sort_small).push_back(sub);
     }
   }
+  if (!skip) {
+    for (std::size_t i = lo; i < hi; ++i) {
+      const std::size_t to = counts[(from_keys[i] >> shift) & kMask]++;
+      to_keys[to] = from_keys[i];
+      to_order[to] = from_order[i];
+    }
+  }
+#if defined(_OPENMP)
+#pragma omp barrier
+#endif
+}
+
+// One thread sorts `range` by its remaining digits in its own buffers and
+// writes it to (keys, order).
+void BarnesHut::Workspace::sort_range(const bh::SortRange& range, SortScratch& buffers) {
+  const std::size_t length = range.end - range.begin;
+  const std::uint64_t* from_keys = (range.in_tmp ? keys_tmp.data() : keys.data()) + range.begin;
+  const std::uint32_t* from_order = (range.in_tmp ? order_tmp.data() : order.data()) + range.begin;
+  std::uint64_t* out_keys = keys.data() + range.begin;
+  std::uint32_t* out_order = order.data() + range.begin;
+  if (range.digits == 0 || length == 1) {
+    std::copy(from_keys, from_keys + length, out_keys);
+    std::copy(from_order, from_order + length, out_order);
+    return;
+  }
+  buffers.keys[0].assign(from_keys, from_keys + length);
+  buffers.order[0].assign(from_order, from_order + length);
+  buffers.keys[1].resize(length);
+  buffers.order[1].resize(length);
+  sort_in_cache(SortRun{buffers.keys[0].data(), buffers.order[0].data()},
+                SortRun{buffers.keys[1].data(), buffers.order[1].data()},
+                SortRun{out_keys, out_order}, length, range.digits);
 }
 
 // The number of quadtree levels that the bodies [begin, end) share: their
