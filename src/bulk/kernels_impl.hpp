@@ -28,6 +28,7 @@
 #include <cmath>
 #include <cstddef>
 #include <limits>
+#include <type_traits>
 #include <vector>
 
 #if defined(__x86_64__) || defined(__i386__)
@@ -679,95 +680,121 @@ Passes<R> plan_passes(const Plan& plan, std::vector<std::size_t>& passes) {
   return out;
 }
 
-// Runs every step of the batch over a chunk of `vectors` vectors. A step is
-// one pass over the chunk per op, each adding its force to the accelerations
-// in the chunk, but the last op's pass also runs the update, in registers,
-// and stores only positions and velocities. The accelerations are the tile's
-// on the first step and +0 on the others (the update clears them), so the
-// first pass of a later step doesn't read them. (One pass for every op and
-// the update together would store least, but then every vector goes through
-// the ops' dispatch: slower on AVX2, measured.)
-template <class R, bool kBook>
-void advance_chunk(const Plan& plan, Chunk<R>& chunk, std::size_t vectors,
-                   std::vector<std::size_t>& passes) {
+// A pass's vector loop: `body` on every vector of the chunk, loaded by
+// `first_load` in the step's first pass (`first`), else with the
+// accelerations the earlier passes stored: a loop each, so that no vector
+// tests which.
+template <class R, class FirstLoad, class Body>
+[[gnu::always_inline]] inline void each_vector(Chunk<R>& chunk, std::size_t vectors, bool first,
+                                               FirstLoad first_load, Body body) {
+  if (first) {
+    for (std::size_t v = 0; v < vectors; ++v) {
+      Block<R> b = first_load(v);
+      body(b);
+    }
+    return;
+  }
+  for (std::size_t v = 0; v < vectors; ++v) {
+    Block<R> b = load_block(chunk, v, true);
+    body(b);
+  }
+}
+
+// Runs one step of the batch (step 0: kFirst) over a chunk of `vectors`
+// vectors: one pass over the chunk per op, each adding its force to the
+// accelerations in the chunk, but the last op's pass also runs the update, in
+// registers, and stores only positions and velocities. The accelerations are
+// the tile's on the first step and +0 on the others (the update clears them),
+// so the first pass of a later step doesn't read them; the two kinds of step
+// are two copies of the loops, so that no vector tests which it is. (One pass
+// for every op and the update together would store least, but then every
+// vector goes through the ops' dispatch: slower on AVX2, measured.)
+template <class R, bool kBook, bool kFirst>
+void advance_step(const Plan& plan, Chunk<R>& chunk, std::size_t vectors,
+                  const std::vector<std::size_t>& passes, const Passes<R>& how, int step) {
   using V = typename Simd<R>::V;
   const R width = R(plan.width);
   const R height = R(plan.height);
   const R dt = R(plan.dt);
   const Boundary boundary = plan.boundary;
   const Walls<R> walls(boundary, width, height);
-  const Passes<R> how = plan_passes<R, kBook>(plan, passes);
-  const V base_x = splat<V>(how.cx);
+  const V base_x = splat<V>(how.cx);  // never -0: a sum from +0
   const V base_y = splat<V>(how.cy);
-  for (int step = 0; step < plan.steps; ++step) {
-    // Vector v as the first pass of the step sees it.
-    const auto first_load = [=, &chunk](std::size_t v) CALDER_BULK_INLINE {
-      Block<R> b = load_block(chunk, v, step == 0);
-      if constexpr (!kBook) {
+  // Vector v as the first pass of the step sees it.
+  const auto first_load = [=, &chunk](std::size_t v) CALDER_BULK_INLINE {
+    Block<R> b = load_block(chunk, v, kFirst);
+    if constexpr (!kBook) {
+      if constexpr (kFirst) {
         b.ax += base_x;
         b.ay += base_y;
+      } else {  // +0 + base
+        b.ax = base_x;
+        b.ay = base_y;
       }
-      return b;
-    };
-    for (std::size_t q = 0; q + 1 < how.own; ++q) {
-      const std::size_t k = passes[q];
-      const auto each = [&](auto force) CALDER_BULK_PASS {
-        // Local copies: else the stores below (memcpy: may alias anything) make
-        // every vector read them again through the closures (WebAssembly).
-        const auto op = force;
-        const auto load_first = first_load;
-        Chunk<R>& to = chunk;
-        const std::size_t n = vectors;
-        const bool first = q == 0;
-        for (std::size_t v = 0; v < n; ++v) {
-          Block<R> b = first ? load_first(v) : load_block(to, v, true);
-          op(b);
-          __builtin_memcpy(to.ax.values + b.at, &b.ax, sizeof(V));
-          __builtin_memcpy(to.ay.values + b.at, &b.ay, sizeof(V));
-        }
-      };
-      apply_op<R, kBook>(each, plan.ops[k], plan.ops[k].template params<R>(), step, width, height,
-                         dt);
     }
-    // The last pass: the fused gravity (`before`), the last op, the update, the boundary.
-    const bool alone = how.own <= 1;
-    const auto last = [&](auto update_one, auto before) CALDER_BULK_INLINE {
-      const auto each = [&](auto force) CALDER_BULK_PASS {
-        const auto op = force;  // local copies, as above
-        const auto before_op = before;
-        const auto update_local = update_one;
-        const auto load_first = first_load;
-        Chunk<R>& to = chunk;
-        const std::size_t n = vectors;
-        const bool first = alone;
-        for (std::size_t v = 0; v < n; ++v) {
-          Block<R> b = first ? load_first(v) : load_block(to, v, true);
-          before_op(b);
-          op(b);
-          update_local(b);
-          __builtin_memcpy(to.x.values + b.at, &b.x, sizeof(V));
-          __builtin_memcpy(to.y.values + b.at, &b.y, sizeof(V));
-          __builtin_memcpy(to.vx.values + b.at, &b.vx, sizeof(V));
-          __builtin_memcpy(to.vy.values + b.at, &b.vy, sizeof(V));
-        }
-      };
-      if (passes.empty()) return each([](Block<R>&) CALDER_BULK_INLINE {});
-      const std::size_t k = passes.back();
-      apply_op<R, kBook>(each, plan.ops[k], plan.ops[k].template params<R>(), step, width, height,
-                         dt);
+    return b;
+  };
+  for (std::size_t q = 0; q + 1 < how.own; ++q) {
+    const std::size_t k = passes[q];
+    const auto each = [&](auto force) CALDER_BULK_PASS {
+      // Local copies: else the stores below (memcpy: may alias anything) make
+      // every vector read them again through the closures (WebAssembly).
+      const auto op = force;
+      Chunk<R>& to = chunk;
+      each_vector(to, vectors, q == 0, first_load, [&](Block<R>& b) CALDER_BULK_INLINE {
+        op(b);
+        __builtin_memcpy(to.ax.values + b.at, &b.ax, sizeof(V));
+        __builtin_memcpy(to.ay.values + b.at, &b.ay, sizeof(V));
+      });
     };
-    with_update(
-        [&](auto update_one) CALDER_BULK_INLINE {
-          if constexpr (kBook && kFuseGravityTarget) {
-            if (how.fused) {
-              return last(update_one, [=](Block<R>& b) CALDER_BULK_INLINE {
-                op_gravity_scaled<R, kBook>(b, how.gx, how.gy);
-              });
-            }
+    apply_op<R, kBook>(each, plan.ops[k], plan.ops[k].template params<R>(), step, width, height,
+                       dt);
+  }
+  // The last pass: the fused gravity (`before`), the last op, the update, the boundary.
+  const bool alone = how.own <= 1;
+  const auto last = [&](auto update_one, auto before) CALDER_BULK_INLINE {
+    const auto each = [&](auto force) CALDER_BULK_PASS {
+      const auto op = force;  // local copies, as above
+      const auto before_op = before;
+      const auto update_local = update_one;
+      Chunk<R>& to = chunk;
+      each_vector(to, vectors, alone, first_load, [&](Block<R>& b) CALDER_BULK_INLINE {
+        before_op(b);
+        op(b);
+        update_local(b);
+        __builtin_memcpy(to.x.values + b.at, &b.x, sizeof(V));
+        __builtin_memcpy(to.y.values + b.at, &b.y, sizeof(V));
+        __builtin_memcpy(to.vx.values + b.at, &b.vx, sizeof(V));
+        __builtin_memcpy(to.vy.values + b.at, &b.vy, sizeof(V));
+      });
+    };
+    if (passes.empty()) return each([](Block<R>&) CALDER_BULK_INLINE {});
+    const std::size_t k = passes.back();
+    apply_op<R, kBook>(each, plan.ops[k], plan.ops[k].template params<R>(), step, width, height,
+                       dt);
+  };
+  with_update(
+      [&](auto update_one) CALDER_BULK_INLINE {
+        if constexpr (kBook && kFuseGravityTarget) {
+          if (how.fused) {
+            return last(update_one, [=](Block<R>& b) CALDER_BULK_INLINE {
+              op_gravity_scaled<R, kBook>(b, how.gx, how.gy);
+            });
           }
-          last(update_one, [](Block<R>&) CALDER_BULK_INLINE {});
-        },
-        boundary, walls, width, height, dt);
+        }
+        last(update_one, [](Block<R>&) CALDER_BULK_INLINE {});
+      },
+      boundary, walls, width, height, dt);
+}
+
+// Runs every step of the batch over a chunk of `vectors` vectors.
+template <class R, bool kBook>
+void advance_chunk(const Plan& plan, Chunk<R>& chunk, std::size_t vectors,
+                   std::vector<std::size_t>& passes) {
+  const Passes<R> how = plan_passes<R, kBook>(plan, passes);
+  if (plan.steps > 0) advance_step<R, kBook, true>(plan, chunk, vectors, passes, how, 0);
+  for (int step = 1; step < plan.steps; ++step) {
+    advance_step<R, kBook, false>(plan, chunk, vectors, passes, how, step);
   }
 }
 
