@@ -173,8 +173,10 @@ template <class V>
 
 // |v| for the fast float32 kernels: the hardware's reciprocal square root
 // estimate (relative error < 2^-14 with AVX-512, 1.5 * 2^-12 with AVX) and one
-// Newton step, about 2^-22, as -ffast-math compiles sqrtf; exact 0 at 0.
-// Elsewhere (float64, book) the correctly rounded vsqrt.
+// Newton step, about 2^-22, as -ffast-math compiles sqrtf; 0 where |v|^2 is
+// below float's smallest normal number (|v| < 1.1e-19, whose drag or
+// friction no float holds: the AVX and SSE estimates read such inputs as 0
+// and give infinity). Elsewhere (float64, book) the correctly rounded vsqrt.
 template <class R, bool kBook, class V>
 [[gnu::always_inline]] inline V vlength(V sq) {
 #if defined(__SSE__)
@@ -189,10 +191,10 @@ template <class R, bool kBook, class V>
 #if defined(__SSE__)
     if constexpr (sizeof(V) == 16) estimate = V(_mm_rsqrt_ps(__m128(sq)));
 #endif
-    // y' = y (3 - x y^2) / 2; |v| = x y', and 0 where x = 0 (y = inf).
-    const V half = estimate * R(0.5);
-    const V refined = half * (R(3) - sq * estimate * estimate);
-    return sq > R(0) ? sq * refined : V{};
+    // y' = y (3 - x y^2) / 2, |v| = x y' = t (3 - t y) / 2 with t = x y.
+    const V t = sq * estimate;
+    const V length = (t * (R(3) - t * estimate)) * R(0.5);
+    return sq >= std::numeric_limits<R>::min() ? length : V{};
   }
 #endif
   return vsqrt(sq);
