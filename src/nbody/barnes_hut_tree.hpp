@@ -13,6 +13,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <span>
+#include <utility>
 #include <vector>
 
 #include "calder/nbody.hpp"
@@ -192,11 +193,18 @@ struct BarnesHut::Workspace {
   struct alignas(64) Scratch {  // one a thread, on its own cache lines
     bh::Lists<double> lists64;
     bh::Lists<float> lists32;
+    bh::Lists<double> unit64;  // a unit's far list
+    bh::Lists<float> unit32;
+    std::vector<std::uint32_t> unit_near;    // nodes a unit accepts, not in its far list
+    std::vector<std::uint32_t> unit_leaves;  // leaves a unit opens
     std::vector<std::uint32_t> stack;
     std::uint64_t interactions = 0;
     std::uint64_t node_interactions = 0;
   };
   std::vector<Scratch> scratch;
+  // Runs of groups with one parent (first group, count), walked together.
+  std::vector<std::uint32_t> parent;
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> units;
 
   // barnes_hut_build.cpp
   void build(std::span<const double> x, std::span<const double> y, std::span<const double> mass,
@@ -233,6 +241,15 @@ struct BarnesHut::Workspace {
   bh::GroupFrame group_frame(const bh::Node& g, bool float32, double scale) const;
   template <typename T>
   void collect(const bh::GroupFrame& f, bool multipoles, Scratch& s, bh::Lists<T>& lists);
+  void plan_units();
+  template <typename T>
+  void walk_unit(std::uint32_t first, std::uint32_t count, Scratch& s, const detail::KernelTable& k,
+                 const detail::LawParams& p, double scale);
+  template <typename T>
+  void add_node(const bh::GroupFrame& f, std::uint32_t index, bool multipoles,
+                bh::Lists<T>& lists) const;
+  template <typename T>
+  void add_leaf(const bh::GroupFrame& f, const bh::Node& n, bh::Lists<T>& lists) const;
   template <typename T>
   void sum_far(const bh::Node& g, const bh::GroupFrame& f, const detail::KernelTable& k,
                const detail::LawParams& p, bh::Lists<T>& lists);
