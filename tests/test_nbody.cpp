@@ -518,6 +518,7 @@ TEST(NbodyBarnesHut, ErrorFallsWithThetaAndIsSmallAtOneHalf) {
     const Field ref = reference(s, plummer(kSoftening));
     for (const nb::Precision p : {nb::Precision::float64, nb::Precision::float32}) {
       double previous = 0.0;
+      double at_one_fifth = 0.0;
       for (const double theta : {0.2, 0.3, 0.5, 0.7, 1.0}) {
         nb::BarnesHutOptions b;
         static_cast<nb::Options&>(b) = plummer(kSoftening);
@@ -526,9 +527,15 @@ TEST(NbodyBarnesHut, ErrorFallsWithThetaAndIsSmallAtOneHalf) {
         const Errors e = relative_errors(barnes_hut(s, b), ref);
         EXPECT_GT(e.rms, previous) << "theta " << theta;
         previous = e.rms;
+        if (theta == 0.2) at_one_fifth = e.rms;
         if (theta == 0.5) {
           EXPECT_LT(e.rms, 1e-3);
           EXPECT_LT(e.max, 3e-2);
+          // The truncation error falls about as theta^4 (39x from 0.5 to
+          // 0.2): no other error (the far field's interpolation) may set a
+          // floor above it. Measured 70x to 82x; 1.5x to 7.6x with the far
+          // field at a fixed 4 half sides of the group.
+          EXPECT_GT(e.rms / at_one_fifth, 15.0);
         }
       }
     }

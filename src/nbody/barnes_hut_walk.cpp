@@ -27,17 +27,20 @@ namespace calder::nbody {
 
 namespace {
 // The far field of a group: the accepted nodes whose centre of mass lies
-// beyond kFarRatio half sides of the group's square from its centre are
-// summed at kStencil x kStencil points and interpolated (sum_far). At 4 half
-// sides the interpolation adds no measurable error to the multipole
-// expansion's (N = 10^6 disk: RMS 7.64e-4 with and without, theta 0.45).
+// beyond kFarRatio / theta half sides of the group's square from its centre
+// are summed at kStencil x kStencil points and interpolated (sum_far). The
+// interpolation's error falls with that distance as the multipole
+// expansion's falls with theta, so it stays below it at every theta (none at
+// theta 0, the direct sum): at the default, 0.45, the ratio is 4 half sides,
+// where it adds no measurable error (N = 10^6 disk: RMS 7.64e-4 with and
+// without); a fixed 4 set an error floor, 1.4e-4 at theta 0.2 (N = 10^4 disk,
+// 2.3e-5 without the far field).
 constexpr std::size_t kStencil = 4;
-constexpr double kFarRatio = 4.0;
-// A unit's far list (walk_unit): beyond 6 of its half sides, where its
-// interpolation adds less error than the groups' at 4 (at 4 it set an error
-// floor that theta below 0.3 no longer lowered: 7e-5, 2000 clumped bodies);
-// as fast at 10^6 bodies.
-constexpr double kUnitFarRatio = 6.0;
+constexpr double kFarRatio = 1.8;
+// A unit's far list (walk_unit): its square is about twice a group's, and
+// beyond kUnitFarRatio / theta of its half sides (6 at theta 0.45) its
+// interpolation adds less error than the groups'.
+constexpr double kUnitFarRatio = 2.7;
 // Groups of at most this many bodies sum every node at each target (the
 // stencil would cost about as much).
 constexpr std::size_t kFarMinTargets = 32;
@@ -150,7 +153,7 @@ void BarnesHut::Workspace::walk_unit(std::uint32_t first, std::uint32_t count, S
   unit.begin = tree.nodes[tree.groups[first]].begin;
   unit.end = tree.nodes[tree.groups[first + count - 1]].end;
   bh::GroupFrame fu = group_frame(unit, kFloat, scale);
-  fu.far2 *= (kUnitFarRatio / kFarRatio) * (kUnitFarRatio / kFarRatio);
+  fu.far2 *= (kUnitFarRatio / kFarRatio) * (kUnitFarRatio / kFarRatio);  // inf stays inf
   unit_lists->far.clear();
   s.unit_near.clear();
   s.unit_leaves.clear();
@@ -294,7 +297,7 @@ bh::GroupFrame BarnesHut::Workspace::group_frame(const bh::Node& g, bool float32
     f.cx = f.x0 + (f.x1 - f.x0) * 0.5;
     f.cy = f.y0 + (f.y1 - f.y0) * 0.5;
     f.half = 0.5 * std::max(f.x1 - f.x0, f.y1 - f.y0);
-    const double r = kFarRatio * f.half;
+    const double r = kFarRatio * inv_theta * f.half;  // +inf at theta 0: no far list
     f.far2 = f.half > 0.0 ? r * r : 0.0;
   }
   return f;
