@@ -137,17 +137,20 @@ struct BarnesHutStats {
 //
 // Build: bounding square; Morton codes (2 x 24 bits); a radix sort (ties in
 // index order: one order, whatever the number of threads that split the
-// work); a quadtree of the sorted order, each node the
-// smallest cell holding its bodies, split until it has at most leaf_size
-// bodies (or all share one code: coincident bodies); per node mass, centre of
-// mass and second and third moments. Walk: for each group of <= group_size
-// bodies, one walk from the root collects the accepted nodes and the bodies
-// of opened leaves; the kernels sum the nodes' multipole expansions to third
-// order (Plummer law; monopoles for the clamped laws, which are not harmonic)
-// and the bodies' direct pulls for the whole group, float32 lists relative
-// to the group's centre. Groups are handed to threads dynamically; each
-// body's sum is still computed by one thread in a fixed order, so results do
-// not depend on the thread count. One solver serves one caller at a time.
+// work); a quadtree of the sorted order, each node the smallest cell holding
+// its bodies, split until it has at most leaf_size bodies (or all share one
+// code: coincident bodies); per node mass, centre of mass and second and
+// third moments. Walk: for each group of <= group_size bodies (groups that
+// share a parent walk the tree once, together), the accepted nodes and the
+// bodies of opened leaves; the kernels sum the nodes' multipole expansions to
+// third order (Plummer law; monopoles for the clamped laws, which are not
+// harmonic) and the bodies' direct pulls for the whole group, float32 lists
+// relative to the group's centre. Nodes far from a group (beyond 1.8 / theta
+// of its half sides) are summed at 4 x 4 points of its square and
+// interpolated: an error below the expansion's at any theta. Groups are
+// handed to threads dynamically; each body's sum is still computed by one
+// thread in a fixed order, so results do not depend on the thread count.
+// One solver serves one caller at a time.
 class BarnesHut {
  public:
   BarnesHut();
