@@ -69,6 +69,46 @@ const Stencil& stencil() {
   }();
   return s;
 }
+
+// The walk's lambdas must be inlined into its loop.
+#define CALDER_BH_INLINE __attribute__((always_inline))
+
+// Whether the group of frame f accepts node n: Barnes' criterion, the
+// distance measured from the group's box.
+[[gnu::always_inline]] inline bool accepts(const bh::Node& n, const bh::GroupFrame& f) {
+  const double dx = std::max(std::max(f.x0 - n.mx, n.mx - f.x1), 0.0);
+  const double dy = std::max(std::max(f.y0 - n.my, n.my - f.y1), 0.0);
+  return dx * dx + dy * dy > n.open2;
+}
+
+// Whether an accepted node n belongs to the far field of frame f's square.
+[[gnu::always_inline]] inline bool is_far(const bh::Node& n, const bh::GroupFrame& f) {
+  const double ex = n.mx - f.cx;
+  const double ey = n.my - f.cy;
+  return f.far2 > 0.0 && ex * ex + ey * ey > f.far2;
+}
+
+// The walk from the root for frame f: `accepted(index)` for each node it
+// accepts, `leaf(index)` for each leaf it opens, children in order.
+template <class Accepted, class Leaf>
+[[gnu::always_inline]] inline void visit(const std::vector<bh::Node>& nodes,
+                                         const bh::GroupFrame& f, std::vector<std::uint32_t>& stack,
+                                         Accepted accepted, Leaf leaf) {
+  stack.clear();
+  stack.push_back(0);
+  while (!stack.empty()) {
+    const std::uint32_t index = stack.back();
+    stack.pop_back();
+    const bh::Node& n = nodes[index];
+    if (accepts(n, f)) {
+      accepted(index);
+    } else if (n.children == 0) {
+      leaf(index);
+    } else {
+      for (std::uint32_t c = n.child + n.children; c-- > n.child;) stack.push_back(c);
+    }
+  }
+}
 }  // namespace
 
 void BarnesHut::Workspace::walk(const detail::LawParams& p, double scale, bool float32,
@@ -157,28 +197,16 @@ void BarnesHut::Workspace::walk_unit(std::uint32_t first, std::uint32_t count, S
   unit_lists->far.clear();
   s.unit_near.clear();
   s.unit_leaves.clear();
-  s.stack.clear();
-  s.stack.push_back(0);
-  while (!s.stack.empty()) {
-    const std::uint32_t index = s.stack.back();
-    s.stack.pop_back();
-    const bh::Node& n = tree.nodes[index];
-    const double dx = std::max(std::max(fu.x0 - n.mx, n.mx - fu.x1), 0.0);
-    const double dy = std::max(std::max(fu.y0 - n.my, n.my - fu.y1), 0.0);
-    if (dx * dx + dy * dy > n.open2) {
-      const double ex = n.mx - fu.cx;
-      const double ey = n.my - fu.cy;
-      if (fu.far2 > 0.0 && ex * ex + ey * ey > fu.far2) {
-        add_node(fu, index, true, *unit_lists);
-      } else {
-        s.unit_near.push_back(index);
-      }
-    } else if (n.children == 0) {
-      s.unit_leaves.push_back(index);
-    } else {
-      for (std::uint32_t c = n.child + n.children; c-- > n.child;) s.stack.push_back(c);
-    }
-  }
+  visit(
+      tree.nodes, fu, s.stack,
+      [&](std::uint32_t index) CALDER_BH_INLINE {
+        if (is_far(tree.nodes[index], fu)) {
+          add_node(fu, index, true, *unit_lists);
+        } else {
+          s.unit_near.push_back(index);
+        }
+      },
+      [&](std::uint32_t index) CALDER_BH_INLINE { s.unit_leaves.push_back(index); });
   for (std::uint32_t g = first; g < first + count; ++g) {
     const bh::Node& group = tree.nodes[tree.groups[g]];
     const bh::GroupFrame f = group_frame(group, kFloat, scale);
@@ -187,13 +215,10 @@ void BarnesHut::Workspace::walk_unit(std::uint32_t first, std::uint32_t count, S
     lists->far.clear();
     for (const std::uint32_t index : s.unit_near) add_node(f, index, true, *lists);
     for (const std::uint32_t index : s.unit_leaves) {
-      const bh::Node& n = tree.nodes[index];
-      const double dx = std::max(std::max(f.x0 - n.mx, n.mx - f.x1), 0.0);
-      const double dy = std::max(std::max(f.y0 - n.my, n.my - f.y1), 0.0);
-      if (dx * dx + dy * dy > n.open2) {
+      if (accepts(tree.nodes[index], f)) {
         add_node(f, index, true, *lists);
       } else {
-        add_leaf(f, n, *lists);
+        add_leaf(f, tree.nodes[index], *lists);
       }
     }
     sum_group(group, f, k, p, s, *lists);
@@ -221,9 +246,7 @@ void BarnesHut::Workspace::add_node(const bh::GroupFrame& f, std::uint32_t index
   const T x = static_cast<T>((n.mx - f.ox) * f.scale);
   const T y = static_cast<T>((n.my - f.oy) * f.scale);
   if (multipoles) {
-    const double ex = n.mx - f.cx;
-    const double ey = n.my - f.cy;
-    auto& accepted = f.far2 > 0.0 && ex * ex + ey * ey > f.far2 ? lists.far : lists.node;
+    auto& accepted = is_far(n, f) ? lists.far : lists.node;
     const std::size_t r = accepted.make_room(1);
     accepted[0][r] = x;
     accepted[1][r] = y;
@@ -308,68 +331,13 @@ bh::GroupFrame BarnesHut::Workspace::group_frame(const bh::Node& g, bool float32
 template <typename T>
 void BarnesHut::Workspace::collect(const bh::GroupFrame& f, bool multipoles, Scratch& s,
                                    bh::Lists<T>& lists) {
-  constexpr bool kFloat = sizeof(T) == 4;
-  const T* node_moments;
-  const T* body_mass;
-  if constexpr (kFloat) {
-    node_moments = node32.data();
-    body_mass = sm32.data();
-  } else {
-    node_moments = node64.data();
-    body_mass = sm.data();
-  }
-  auto& body = lists.body;
-  auto& near = lists.node;
-  auto& far = lists.far;
-  body.clear();
-  near.clear();
-  far.clear();
-  s.stack.clear();
-  s.stack.push_back(0);
-  while (!s.stack.empty()) {
-    const std::uint32_t index = s.stack.back();
-    s.stack.pop_back();
-    const bh::Node& n = tree.nodes[index];
-    const double dx = std::max(std::max(f.x0 - n.mx, n.mx - f.x1), 0.0);
-    const double dy = std::max(std::max(f.y0 - n.my, n.my - f.y1), 0.0);
-    if (dx * dx + dy * dy > n.open2) {
-      const T* m = node_moments + std::size_t{index} * bh::kMoments;
-      const T x = static_cast<T>((n.mx - f.ox) * f.scale);
-      const T y = static_cast<T>((n.my - f.oy) * f.scale);
-      if (multipoles) {
-        const double ex = n.mx - f.cx;
-        const double ey = n.my - f.cy;
-        auto& accepted = f.far2 > 0.0 && ex * ex + ey * ey > f.far2 ? far : near;
-        const std::size_t r = accepted.make_room(1);
-        accepted[0][r] = x;
-        accepted[1][r] = y;
-        for (std::size_t a = 0; a < bh::kMoments; ++a) accepted[2 + a][r] = m[a];
-        accepted.size = r + 1;
-      } else {  // a point mass
-        const std::size_t r = body.make_room(1);
-        body[0][r] = x;
-        body[1][r] = y;
-        body[2][r] = m[0];
-        body.size = r + 1;
-      }
-    } else if (n.children == 0) {
-      const std::size_t count = n.end - n.begin;
-      const std::size_t r = body.make_room(count);
-      if constexpr (kFloat) {
-        for (std::size_t b = 0; b < count; ++b) {
-          body[0][r + b] = static_cast<T>((sx[n.begin + b] - f.ox) * f.scale);
-          body[1][r + b] = static_cast<T>((sy[n.begin + b] - f.oy) * f.scale);
-        }
-      } else {
-        std::memcpy(body[0] + r, sx.data() + n.begin, count * sizeof(T));
-        std::memcpy(body[1] + r, sy.data() + n.begin, count * sizeof(T));
-      }
-      std::memcpy(body[2] + r, body_mass + n.begin, count * sizeof(T));
-      body.size = r + count;
-    } else {
-      for (std::uint32_t c = n.child + n.children; c-- > n.child;) s.stack.push_back(c);
-    }
-  }
+  lists.body.clear();
+  lists.node.clear();
+  lists.far.clear();
+  visit(
+      tree.nodes, f, s.stack,
+      [&](std::uint32_t index) CALDER_BH_INLINE { add_node(f, index, multipoles, lists); },
+      [&](std::uint32_t index) CALDER_BH_INLINE { add_leaf(f, tree.nodes[index], lists); });
 }
 
 // The far nodes' field, evaluated at kStencil x kStencil Chebyshev points of
