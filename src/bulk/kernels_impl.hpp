@@ -177,8 +177,14 @@ template <class V>
 // below float's smallest normal number (|v| < 1.1e-19, whose drag or
 // friction no float holds: the AVX and SSE estimates read such inputs as 0
 // and give infinity). Elsewhere (float64, book) the correctly rounded vsqrt.
-// kTwice: 2 |v| (the float32 estimate's last multiplication by 1/2 left to
-// the caller's constants; in float64 and book |v| itself).
+// Whether float32 |v| comes from the estimate (x86); where it does,
+// kTwice asks for 2 |v|, the estimate's last multiplication by 1/2 left to
+// the caller's constants.
+#if defined(__SSE__)
+constexpr bool kLengthEstimate = true;
+#else
+constexpr bool kLengthEstimate = false;
+#endif
 template <class R, bool kBook, class V, bool kTwice = false>
 [[gnu::always_inline]] inline V vlength(V sq) {
 #if defined(__SSE__)
@@ -200,6 +206,7 @@ template <class R, bool kBook, class V, bool kTwice = false>
     return sq >= std::numeric_limits<R>::min() ? length : V{};
   }
 #endif
+  static_assert(!kTwice || (kLengthEstimate && !kBook && sizeof(R) == 4));
   return vsqrt(sq);
 }
 
@@ -304,7 +311,7 @@ template <class R, bool kBook, bool kNeverReverse, bool kEverywhere>
     } else {
       // a = -k v with k = c area |v| / m; never reversing: k dt <= 1. float32:
       // (c / 2) (2 |v|), a multiplication fewer.
-      constexpr bool kTwice = sizeof(R) == 4;
+      constexpr bool kTwice = kLengthEstimate && sizeof(R) == 4;
       const V speed = vlength<R, kBook, V, kTwice>(vx * vx + vy * vy);
       V k = (kTwice ? p.c * R(0.5) : p.c) * b.area() * speed * b.inv_m();
       if constexpr (kNeverReverse) k = k < R(1) / dt ? k : splat<V>(R(1) / dt);
