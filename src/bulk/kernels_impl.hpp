@@ -96,10 +96,12 @@ struct ChunkColumn {
 
 // The tile's bodies in R, padded to whole vectors (lanes past the tile
 // repeat its first body, a valid one, and are never stored back), with
-// 1 / mass beside them, 64-byte aligned.
+// 1 / mass and the bounce's bounds on the radius beside them, 64-byte
+// aligned.
 template <class R>
 struct alignas(64) Chunk : BodyColumnsOf<ChunkColumn<R>> {
   ChunkColumn<R> inv_m;
+  ChunkColumn<R> x_min, x_max, y_min, y_max;  // fill_bounds
 };
 
 // One vector of a chunk's bodies: the state a step changes, in registers; the
@@ -120,6 +122,10 @@ struct Block {
   [[gnu::always_inline]] V m() const { return load(chunk->mass.values + at); }
   [[gnu::always_inline]] V inv_m() const { return load(chunk->inv_m.values + at); }
   [[gnu::always_inline]] V r() const { return load(chunk->radius.values + at); }
+  [[gnu::always_inline]] V x_min() const { return load(chunk->x_min.values + at); }
+  [[gnu::always_inline]] V x_max() const { return load(chunk->x_max.values + at); }
+  [[gnu::always_inline]] V y_min() const { return load(chunk->y_min.values + at); }
+  [[gnu::always_inline]] V y_max() const { return load(chunk->y_max.values + at); }
   [[gnu::always_inline]] V area() const { return load(chunk->drag_area.values + at); }
   [[gnu::always_inline]] V mu() const { return load(chunk->friction.values + at); }
 };
@@ -492,13 +498,21 @@ struct Walls {
 template <class R, bool kUseRadius>
 [[gnu::always_inline]] inline void bounce(Block<R>& b, const Walls<R>& walls) {
   using V = typename Simd<R>::V;
-  const V r = kUseRadius ? b.r() : splat<V>(R(0));
   const V x = b.x;
   const V y = b.y;
-  const V x_max = walls.right - r;
-  const V y_max = walls.bottom - r;
-  const V x_min = r - walls.left;  // r - (+0) is r, also for r = -0
-  const V y_min = r - walls.top;
+  V x_max, y_max, x_min, y_min;
+  if constexpr (kUseRadius) {  // per body, once a batch (fill_bounds)
+    x_max = b.x_max();
+    y_max = b.y_max();
+    x_min = b.x_min();
+    y_min = b.y_min();
+  } else {
+    const V r = splat<V>(R(0));
+    x_max = walls.right - r;
+    y_max = walls.bottom - r;
+    x_min = r - walls.left;  // r - (+0) is r, also for r = -0
+    y_min = r - walls.top;
+  }
   const auto right = x > x_max;
   const auto left = x < x_min;
   const auto bottom = y > y_max;
@@ -509,6 +523,20 @@ template <class R, bool kUseRadius>
   b.y = select_lanes(bottom, y_max, y < y_min ? y_min : y);
   b.vx = select_lanes(right | left, b.vx * walls.reverse, b.vx);
   b.vy = select_lanes(bottom | top, b.vy * walls.reverse, b.vy);
+}
+
+// The bounce's bounds on the radius, each body's: the subtractions that
+// World's bounce makes every step, made once a batch (the same in R).
+template <class R>
+void fill_bounds(const Plan& plan, Chunk<R>& chunk, std::size_t padded) {
+  const Walls<R> walls(plan.boundary, R(plan.width), R(plan.height));
+  for (std::size_t i = 0; i < padded; ++i) {
+    const R r = chunk.radius.values[i];
+    chunk.x_max.values[i] = walls.right - r;
+    chunk.y_max.values[i] = walls.bottom - r;
+    chunk.x_min.values[i] = r - walls.left;  // r - (+0) is r, also for r = -0
+    chunk.y_min.values[i] = r - walls.top;
+  }
 }
 
 // The update (semi-implicit Euler, acceleration cleared) and the bounce.
@@ -830,6 +858,9 @@ void advance_tile(const Plan& plan, const Tile& tile) {
     const double* mass = tile.bodies.mass;
     for (std::size_t i = 0; i < padded; ++i)
       chunk.inv_m.values[i] = R(1.0 / mass[i < tile.n ? i : 0]);
+  }
+  if (plan.boundary.kind == BoundaryKind::bounce && plan.boundary.use_radius) {
+    fill_bounds(plan, chunk, padded);
   }
   thread_local std::vector<std::size_t> passes;
   advance_chunk<R, kBook>(plan, chunk, vectors, passes);
