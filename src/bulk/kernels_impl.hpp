@@ -183,9 +183,9 @@ template <class V>
 // below float's smallest normal number (|v| < 1.1e-19, whose drag or
 // friction no float holds: the AVX and SSE estimates read such inputs as 0
 // and give infinity). Elsewhere (float64, book) the correctly rounded vsqrt.
-// Whether float32 |v| comes from the estimate (x86); where it does,
-// kTwice asks for 2 |v|, the estimate's last multiplication by 1/2 left to
-// the caller's constants.
+// kLengthEstimate: whether float32 |v| comes from the estimate (x86); where
+// it does, kTwice asks for 2 |v|, the estimate's last multiplication by 1/2
+// left to the caller's constants.
 #if defined(__SSE__)
 constexpr bool kLengthEstimate = true;
 #else

@@ -3,8 +3,9 @@
 //   barnes_hut_build.cpp    bounding square, Morton sort, the tree and its
 //                           moments (threads build subtrees of the Morton order)
 //   barnes_hut_moments.cpp  the moments as the multipole kernels read them
-//   barnes_hut_walk.cpp     per group: the tree walk, the kernels' sums and
-//                           the far field's interpolation
+//   barnes_hut_walk.cpp     per group (or unit of sibling groups): the tree
+//                           walk, the kernels' sums and the far field's
+//                           interpolation
 //   barnes_hut.cpp          the public entry points, which run the steps
 #pragma once
 

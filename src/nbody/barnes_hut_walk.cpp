@@ -7,9 +7,11 @@
 // body list. The kernels then sum the node and body lists for all the
 // group's bodies, and the far list at a few points of the group's square,
 // interpolated to the bodies; float32 lists are relative to the group's
-// centre. Groups go to threads dynamically; each body's sum is made by one
-// thread in a fixed order, so the results do not depend on the number of
-// threads.
+// centre. Groups that share a parent form a unit (walk_unit): one walk from
+// the root for all of them, its far list summed once for all their bodies,
+// each group's walk continued from what the unit left open. Units go to
+// threads dynamically; each body's sum is made by one thread in a fixed
+// order, so the results do not depend on the number of threads.
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
