@@ -318,9 +318,11 @@ void BarnesHut::Workspace::sort_range(const bh::SortRange& range, SortScratch& b
   const std::uint32_t* from_order = (range.in_tmp ? order_tmp.data() : order.data()) + range.begin;
   std::uint64_t* out_keys = keys.data() + range.begin;
   std::uint32_t* out_order = order.data() + range.begin;
-  if (range.digits == 0 || length == 1) {
-    std::copy(from_keys, from_keys + length, out_keys);
-    std::copy(from_order, from_order + length, out_order);
+  if (range.digits == 0 || length == 1) {  // sorted: in place, or copied back
+    if (range.in_tmp) {
+      std::copy(from_keys, from_keys + length, out_keys);
+      std::copy(from_order, from_order + length, out_order);
+    }
     return;
   }
   buffers.keys[0].assign(from_keys, from_keys + length);
