@@ -927,18 +927,21 @@ TEST_F(MoversTest, DropsReachTerminalVelocityInEveryArithmetic) {
 // fail. Drag that small holds no float: the bodies keep their speeds, as in
 // the plain loops.
 TEST_F(MoversTest, TinySpeedsStayFiniteInEveryArithmetic) {
+  const auto speed_of = [](std::size_t i) {  // 8.7e-19 px a step down
+    return std::ldexp(1.0, -60 - static_cast<int>(i % 90));
+  };
   for (const Arithmetic a : {Arithmetic::book, Arithmetic::float64, Arithmetic::float32}) {
     SCOPED_TRACE(arithmetic_name(a));
     World world(WorldDef{.boundary = Boundary::none(), .arithmetic = a});
     for (std::size_t i = 0; i < 1024; ++i) {
-      const double speed = std::ldexp(1.0, -60 - static_cast<int>(i % 90));  // 8.7e-19 down
+      const double speed = speed_of(i);
       world.add_body(
           {.position = {static_cast<double>(i % 640), 100.0}, .velocity = {speed, -speed}});
     }
     world.add(Drag{.c = 0.01});
     EXPECT_EQ(step_catching(world, 300), "");
     for (std::size_t i = 0; i < 1024; ++i) {
-      const double speed = std::ldexp(1.0, -60 - static_cast<int>(i % 90));
+      const double speed = speed_of(i);
       const Vec2 v = world.velocity(world.body(i));
       EXPECT_NEAR(v.x, speed, 1e-6 * speed) << i;
       EXPECT_NEAR(v.y, -speed, 1e-6 * speed) << i;

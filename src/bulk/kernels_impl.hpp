@@ -525,6 +525,12 @@ template <class R, bool kUseRadius>
   b.vy = select_lanes(bottom | top, b.vy * walls.reverse, b.vy);
 }
 
+// Whether the update bounces bodies on their radius: then its bounds are
+// each body's (fill_bounds, bounce<R, true>).
+inline bool bounces_on_radius(const Boundary& boundary) {
+  return boundary.kind == BoundaryKind::bounce && boundary.use_radius;
+}
+
 // The bounce's bounds on the radius, each body's: the subtractions that
 // World's bounce makes every step, made once a batch (the same in R).
 template <class R>
@@ -667,7 +673,7 @@ template <class R, bool kBook>
 template <class R, class Last>
 [[gnu::always_inline]] inline void with_update(Last&& last, const Boundary& boundary,
                                                const Walls<R>& walls, R width, R height, R dt) {
-  if (boundary.kind == BoundaryKind::bounce && boundary.use_radius) {
+  if (bounces_on_radius(boundary)) {
     if (walls.before) {
       return last([=](Block<R>& b)
                       CALDER_BULK_INLINE { update_bounce_at<R, true, true>(b, walls, dt); });
@@ -859,9 +865,7 @@ void advance_tile(const Plan& plan, const Tile& tile) {
     for (std::size_t i = 0; i < padded; ++i)
       chunk.inv_m.values[i] = R(1.0 / mass[i < tile.n ? i : 0]);
   }
-  if (plan.boundary.kind == BoundaryKind::bounce && plan.boundary.use_radius) {
-    fill_bounds(plan, chunk, padded);
-  }
+  if (bounces_on_radius(plan.boundary)) fill_bounds(plan, chunk, padded);
   thread_local std::vector<std::size_t> passes;
   advance_chunk<R, kBook>(plan, chunk, vectors, passes);
   // The last pass keeps the accelerations in registers: cleared by the update.

@@ -227,7 +227,7 @@ void BarnesHut::Workspace::sort_bodies(std::span<const double> x, std::span<cons
 // significant digit first radix sort: the team splits a range by its next
 // digit (a stable counting pass, thread slices in order) until the ranges fit
 // in a thread's cache, then each thread sorts whole ranges on its own by
-// their remaining digits (least significant first, stable). The sorted order
+// their remaining digits (sort_in_cache, the same way). The sorted order
 // is unique (key, then index), so it does not depend on the number of
 // threads or on how the work was split.
 void BarnesHut::Workspace::sort_keys(std::size_t t, std::size_t nt) {
@@ -236,7 +236,7 @@ void BarnesHut::Workspace::sort_keys(std::size_t t, std::size_t nt) {
 #endif
   {
     sort_large.assign(
-        1, bh::SortRange{0, static_cast<std::uint32_t>(keys.size()), bh::kRadixPasses, false});
+        1, bh::SortRange{0, static_cast<std::uint32_t>(keys.size()), bh::kRadixDigits, false});
     sort_small.clear();
   }
   for (std::size_t r = 0; r < sort_large.size(); ++r) {

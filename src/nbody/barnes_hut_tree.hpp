@@ -27,7 +27,7 @@ inline constexpr int kBits = 24;  // per axis: 48-bit Morton codes, at most 24 l
 inline constexpr std::uint32_t kCells = std::uint32_t{1} << kBits;
 inline constexpr int kRadixBits = 8;
 inline constexpr std::size_t kRadixBuckets = std::size_t{1} << kRadixBits;
-inline constexpr int kRadixPasses = 2 * kBits / kRadixBits;
+inline constexpr int kRadixDigits = 2 * kBits / kRadixBits;
 // Ranges of the sort up to this many keys are sorted by one thread in its
 // cache (12 bytes a key, twice: about 0.8 MB); larger ones are split by the
 // team.
@@ -239,7 +239,8 @@ struct BarnesHut::Workspace {
   template <typename T>
   void walk_group(std::uint32_t group, Scratch& s, const detail::KernelTable& k,
                   const detail::LawParams& p, double scale);
-  bh::GroupFrame group_frame(const bh::Node& g, bool float32, double scale) const;
+  // The bodies' box; a far list beyond far_ratio / theta of its half sides.
+  bh::GroupFrame group_frame(const bh::Node& g, bool float32, double scale, double far_ratio) const;
   template <typename T>
   void collect(const bh::GroupFrame& f, bool multipoles, Scratch& s, bh::Lists<T>& lists);
   void plan_units();

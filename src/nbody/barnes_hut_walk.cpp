@@ -194,8 +194,7 @@ void BarnesHut::Workspace::walk_unit(std::uint32_t first, std::uint32_t count, S
   bh::Node unit;
   unit.begin = tree.nodes[tree.groups[first]].begin;
   unit.end = tree.nodes[tree.groups[first + count - 1]].end;
-  bh::GroupFrame fu = group_frame(unit, kFloat, scale);
-  fu.far2 *= (kUnitFarRatio / kFarRatio) * (kUnitFarRatio / kFarRatio);  // inf stays inf
+  const bh::GroupFrame fu = group_frame(unit, kFloat, scale, kUnitFarRatio);
   unit_lists->far.clear();
   s.unit_near.clear();
   s.unit_leaves.clear();
@@ -211,7 +210,7 @@ void BarnesHut::Workspace::walk_unit(std::uint32_t first, std::uint32_t count, S
       [&](std::uint32_t index) CALDER_BH_INLINE { s.unit_leaves.push_back(index); });
   for (std::uint32_t g = first; g < first + count; ++g) {
     const bh::Node& group = tree.nodes[tree.groups[g]];
-    const bh::GroupFrame f = group_frame(group, kFloat, scale);
+    const bh::GroupFrame f = group_frame(group, kFloat, scale, kFarRatio);
     lists->body.clear();
     lists->node.clear();
     lists->far.clear();
@@ -289,7 +288,7 @@ void BarnesHut::Workspace::walk_group(std::uint32_t group, Scratch& s, const det
                                       const detail::LawParams& p, double scale) {
   constexpr bool kFloat = sizeof(T) == 4;
   const bh::Node& g = tree.nodes[group];
-  const bh::GroupFrame f = group_frame(g, kFloat, scale);
+  const bh::GroupFrame f = group_frame(g, kFloat, scale, kFarRatio);
   bh::Lists<T>* lists;
   if constexpr (kFloat) {
     lists = &s.lists32;
@@ -302,8 +301,8 @@ void BarnesHut::Workspace::walk_group(std::uint32_t group, Scratch& s, const det
 
 // The group's bounding box; float32 lists are relative to its centre, in
 // the frame's scale.
-bh::GroupFrame BarnesHut::Workspace::group_frame(const bh::Node& g, bool float32,
-                                                 double scale) const {
+bh::GroupFrame BarnesHut::Workspace::group_frame(const bh::Node& g, bool float32, double scale,
+                                                 double far_ratio) const {
   bh::GroupFrame f;
   f.x0 = f.x1 = sx[g.begin];
   f.y0 = f.y1 = sy[g.begin];
@@ -322,7 +321,7 @@ bh::GroupFrame BarnesHut::Workspace::group_frame(const bh::Node& g, bool float32
     f.cx = f.x0 + (f.x1 - f.x0) * 0.5;
     f.cy = f.y0 + (f.y1 - f.y0) * 0.5;
     f.half = 0.5 * std::max(f.x1 - f.x0, f.y1 - f.y0);
-    const double r = kFarRatio * inv_theta * f.half;  // +inf at theta 0: no far list
+    const double r = far_ratio * inv_theta * f.half;  // +inf at theta 0: no far list
     f.far2 = f.half > 0.0 ? r * r : 0.0;
   }
   return f;
