@@ -4,7 +4,8 @@
 // bit (every supported field, boundary and dt, a partial last batch, ragged
 // tiles), the built-in scenes, results independent of the thread count, the
 // float64 / float32 errors against book, the fallbacks and errors, and the
-// physics (terminal velocity) through every arithmetic.
+// physics (terminal velocity) through every arithmetic, and the book kernels'
+// quotients by the mass against the divide on its hard cases.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -14,6 +15,8 @@
 #include <cstdint>
 #include <cstdio>
 #include <initializer_list>
+#include <iterator>
+#include <limits>
 #include <set>
 #include <sstream>
 #include <string>
@@ -29,6 +32,8 @@
 #include "calder/step_batch.hpp"
 #include "calder/vec2.hpp"
 #include "calder/world.hpp"
+
+#include "../src/bulk/plan.hpp"  // book_quotients: the kernels' quotients by the mass
 
 namespace {
 
@@ -947,6 +952,122 @@ TEST_F(MoversTest, TinySpeedsStayFiniteInEveryArithmetic) {
       EXPECT_NEAR(v.y, -speed, 1e-6 * speed) << i;
     }
   }
+}
+
+// Quotients by the mass that round near a midpoint, the hard cases of a
+// division: with M odd in [2^52, 2^53) and t a small odd integer, K = t / M
+// mod 2^54 is odd, and if K >= 2^53, X = (M K - t) / 2^54 is an integer below
+// 2^53, so x = X 2^-52 over m = M 2^-52 is (K - t / M) 2^-54: a midpoint of
+// the float64 grid (K odd) less |t| / M of its units, about t 2^-105 relative
+// (|t| from 1 to 2^20: the hardest quotients there are, and easier ones).
+struct HardQuotient {
+  double x, m;
+};
+std::vector<HardQuotient> hard_quotients(std::size_t count, std::uint32_t seed) {
+  __extension__ using Wide = unsigned __int128;
+  calder::Random rng(seed);
+  std::vector<HardQuotient> out;
+  while (out.size() < count) {
+    const auto odd_m =
+        (std::uint64_t{1} << 52) | (static_cast<std::uint64_t>(rng.random(0x1p52)) | 1U);
+    std::uint64_t inverse = odd_m;  // Newton's iteration for 1 / M mod 2^64
+    for (int i = 0; i < 6; ++i) inverse *= 2 - odd_m * inverse;
+    auto t = static_cast<std::int64_t>(std::ldexp(1.0, static_cast<int>(rng.random(21.0)))) | 1;
+    if (rng.random(1.0) < 0.5) t = -t;
+    const std::uint64_t k =
+        (static_cast<std::uint64_t>(t) * inverse) & ((std::uint64_t{1} << 54) - 1);
+    if (k < (std::uint64_t{1} << 53)) continue;
+    const Wide product = Wide{odd_m} * k;
+    const Wide numerator = t > 0 ? product - static_cast<Wide>(t) : product + static_cast<Wide>(-t);
+    const auto big_x = static_cast<std::uint64_t>(numerator >> 54);
+    EXPECT_EQ(static_cast<std::uint64_t>(numerator) & ((std::uint64_t{1} << 54) - 1), 0U);
+    // Any sign, any scale the fused path takes (the tile's masses in
+    // [2^-200, 2^200], numerators in [2^-700, 2^700]): the same bits scaled.
+    const double sign = rng.random(1.0) < 0.5 ? -1.0 : 1.0;
+    const int x_scale = static_cast<int>(rng.random(-600.0, 600.0));
+    const int m_scale = static_cast<int>(rng.random(-100.0, 100.0));
+    out.push_back({sign * std::ldexp(static_cast<double>(big_x), x_scale - 52),
+                   std::ldexp(static_cast<double>(odd_m), m_scale - 52)});
+  }
+  return out;
+}
+
+TEST_F(MoversTest, BookQuotientsByTheMassAreTheDividesBits) {
+  const auto& kernels = calder::bulk::detail::kernels();
+  std::vector<double> x, m;
+  for (const HardQuotient& q : hard_quotients(40000, 9)) {
+    x.push_back(q.x);
+    m.push_back(q.m);
+  }
+  calder::Random rng(10);
+  for (std::size_t i = 0; i < 20000; ++i) {  // random ones, and zeros of both signs
+    const double pick = rng.random(1.0);
+    x.push_back(pick < 0.05 ? 0.0 : pick < 0.1 ? -0.0 : rng.random(-1e3, 1e3));
+    m.push_back(rng.random(0.5, 3.0));
+  }
+  const std::size_t in_range = x.size();
+  // Outside the fused path's range, each in a tile of its own (a tile with
+  // one takes the divides): numerators near underflow and overflow, not
+  // finite, and masses outside [2^-200, 2^200].
+  const double special_x[] = {0x1p-800,
+                              -0x1p-1070,
+                              0x1p800,
+                              -1e308,
+                              std::numeric_limits<double>::infinity(),
+                              std::numeric_limits<double>::quiet_NaN(),
+                              1.5,
+                              -2.5};
+  const double special_m[] = {1.25, 3.0, 0.75, 0.5, 2.0, 1.0, 0x1p-300, 0x1p300};
+  for (std::size_t s = 0; s < std::size(special_x); ++s) {
+    for (std::size_t i = 0; i < calder::bulk::kTile; ++i) {
+      x.push_back(i == 100 ? special_x[s] : rng.random(-1e3, 1e3));
+      m.push_back(i == 100 ? special_m[s] : rng.random(0.5, 3.0));
+    }
+  }
+  std::vector<double> q(x.size());
+  kernels.book_quotients(x.data(), m.data(), q.data(), x.size());
+  std::size_t differing = 0;
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    const double expected = x[i] / m[i];
+    if (std::bit_cast<std::uint64_t>(q[i]) != std::bit_cast<std::uint64_t>(expected)) {
+      if (differing++ < 5) {
+        ADD_FAILURE() << kernels.name << ": " << show(x[i]) << " / " << show(m[i]) << " = "
+                      << show(expected) << ", the kernels' " << show(q[i])
+                      << (i < in_range ? "" : " (outside the fused range)");
+      }
+    }
+  }
+  EXPECT_EQ(differing, 0U);
+  // The hard cases are hard: each exact quotient is within 2^-31 of its units
+  // of a midpoint (a random one: 1/4 on average). x - m RN(x / m) is exact.
+  for (std::size_t i = 0; i < 40000; ++i) {
+    const double rounded = x[i] / m[i];
+    const double units = std::ldexp(1.0, std::ilogb(rounded) - 52);
+    const double offset = std::fabs(std::fma(-rounded, m[i], x[i]) / m[i]) / units;
+    ASSERT_LE(std::fabs(offset - 0.5), 0x1p-31) << show(x[i]) << " / " << show(m[i]);
+  }
+}
+
+// Drag that small, or masses that small, take the book kernels' divides (the
+// fused quotients' range): the same bits as the plain loops all the same.
+TEST_F(MoversTest, BookQuotientsOutsideTheFusedRangeGiveThePlainLoopsBits) {
+  World start(WorldDef{.boundary = Boundary::none(), .arithmetic = Arithmetic::book});
+  calder::Random rng(12);
+  for (std::size_t i = 0; i < 2048; ++i) {
+    // Tile 2: speeds of 2^-400 (drag near 2^-800); tile 5: a mass of 2^-300.
+    const double speed = i / calder::bulk::kTile == 2 ? 0x1p-400 : rng.random(0.5, 3.0);
+    const double mass = i == 5 * calder::bulk::kTile + 7 ? 0x1p-300 : rng.random(0.5, 3.0);
+    start.add_body({.position = {rng.random(640.0), rng.random(240.0)},
+                    .velocity = {speed, -speed},
+                    .mass = mass});
+  }
+  start.add(Drag{.c = 0.01, .never_reverse = true});  // (else the light body's drag overflows)
+  start.add(Gravity{.g = {0.0, 0.1}, .scale_by_mass = true});
+  const Outcome kernels = run_kernels(start, 200);
+  const Outcome plain = run_plain(start, 200);
+  ASSERT_EQ(plain.error, "");
+  EXPECT_EQ(kernels.error, "");
+  EXPECT_TRUE(same_bits(kernels.world, plain.world));
 }
 
 }  // namespace

@@ -96,11 +96,15 @@ struct Tile {
 // Advances one tile through plan.steps steps.
 using AdvanceTile = void (*)(const Plan& plan, const Tile& tile);
 
+// out[i] = x[i] / mass[i] as the book kernels divide (for the tests).
+using BookQuotients = void (*)(const double* x, const double* mass, double* out, std::size_t n);
+
 struct KernelTable {
   const char* name;
   AdvanceTile book64;  // Arithmetic::book
   AdvanceTile fast64;  // Arithmetic::float64
   AdvanceTile fast32;  // Arithmetic::float32
+  BookQuotients book_quotients;
 };
 
 const KernelTable& kernels();

@@ -1,8 +1,12 @@
 # SPDX-License-Identifier: MIT
 # lint.bulk_kernels_asm: reads the machine code of calder::bulk's kernel
 # objects (objdump) and checks what the source promises:
-#   - the book kernels contain no fused multiply-add (they must round every
-#     operation as the plain loops do, or p5.js sketches drift);
+#   - the book kernels contain no contracted multiply-add (they must round
+#     every operation as the plain loops do, or p5.js sketches drift): their
+#     only fused instructions are quotient_by_mass's corrections, written
+#     with intrinsics (src/bulk/kernels_impl.hpp), a vfmsub then a vfnmadd
+#     each, so as many of one as of the other and no vfmadd or vfnmsub, which
+#     a compiler contracting a * b + c would emit;
 #   - on a target with AVX2 + FMA or AVX-512, the kernels are vectorised:
 #     packed square roots and divisions on ymm/zmm registers, and the fast
 #     kernels use packed fused multiply-adds.
@@ -29,9 +33,18 @@ endfunction()
 disassemble(book "${BOOK}")
 disassemble(fast "${FAST}")
 
-if(book MATCHES "vfn?m(add|sub)[0-9]*[ps][sd]")
+if(book MATCHES "(vfmadd|vfnmsub|vfmaddsub|vfmsubadd)[0-9]*[ps][sd]")
   message(FATAL_ERROR "check_kernels_asm: the book kernels contain a fused multiply-add "
                       "(${CMAKE_MATCH_0}); they must be compiled with -ffp-contract=off")
+endif()
+string(REGEX MATCHALL "vfmsub[0-9]*[ps][sd]" book_fmsub "${book}")
+string(REGEX MATCHALL "vfnmadd[0-9]*[ps][sd]" book_fnmadd "${book}")
+list(LENGTH book_fmsub fmsub_count)
+list(LENGTH book_fnmadd fnmadd_count)
+if(NOT fmsub_count EQUAL fnmadd_count)
+  message(FATAL_ERROR "check_kernels_asm: the book kernels have ${fmsub_count} vfmsub and "
+                      "${fnmadd_count} vfnmadd: fused instructions other than quotient_by_mass's "
+                      "pairs; they must be compiled with -ffp-contract=off")
 endif()
 if(WIDE)
   foreach(pattern "vsqrtpd[ \t]+%[yz]mm" "vdivpd[ \t]+%[yz]mm")
