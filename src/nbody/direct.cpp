@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstddef>
 #include <functional>
+#include <iterator>
 #include <string>
 #include <vector>
 
@@ -145,6 +146,106 @@ LawParams law_params(const Options& options, const FloatFrame& frame) {
   return p;
 }
 
+// Direct summation with each pair once (Newton's third law), for systems of
+// kStripesForPairs stripes of kFloatTile bodies or more (below, the one-sided
+// blocks cost little and share out better). The bodies, padded to whole
+// vectors with massless copies of body 0, are cut into stripes; a first
+// round sums each stripe over itself (one-sided), then the circle method's
+// rounds pair every two stripes once, each stripe in one pair a round at
+// most: the pairs of a round run side by side and add to disjoint sums, and
+// each body's sum runs in round order, the same for any thread count.
+inline constexpr std::size_t kStripesForPairs = 8;
+
+bool sums_pairs_once(std::size_t n) {
+  return (n + kFloatTile - 1) / kFloatTile >= kStripesForPairs;
+}
+
+template <typename T, typename OneSided, typename Pairs>
+void sum_by_stripes(const Bodies<T>& bodies, int threads, double* sum_x, double* sum_y,
+                    OneSided one_sided, Pairs pairs) {
+  constexpr std::size_t S = kFloatTile;
+  const std::size_t stripes = (bodies.n + S - 1) / S;
+  const auto stripe = [&](std::size_t k) {
+    Bodies<T> b;
+    const std::size_t first = k * S;
+    b.x = bodies.x + first;
+    b.y = bodies.y + first;
+    b.m = bodies.m + first;
+    b.x_lo = bodies.x_lo == nullptr ? nullptr : bodies.x_lo + first;
+    b.y_lo = bodies.y_lo == nullptr ? nullptr : bodies.y_lo + first;
+    b.n = std::min(S, bodies.n - first);
+    return b;
+  };
+  const std::size_t players = stripes + stripes % 2;  // even: a bye when odd
+  const auto diagonal = static_cast<std::ptrdiff_t>(stripes);
+  const auto matches = static_cast<std::ptrdiff_t>(players / 2);
+#if defined(_OPENMP)
+#pragma omp parallel num_threads(threads)
+#endif
+  {
+#if defined(_OPENMP)
+#pragma omp for schedule(static)
+#endif
+    for (std::ptrdiff_t k = 0; k < diagonal; ++k) {
+      const auto u = static_cast<std::size_t>(k);
+      const Bodies<T> own = stripe(u);
+      one_sided(own, own, sum_x + u * S, sum_y + u * S);
+    }
+    for (std::size_t round = 0; round + 1 < players; ++round) {
+#if defined(_OPENMP)
+#pragma omp for schedule(static)
+#endif
+      for (std::ptrdiff_t t = 0; t < matches; ++t) {
+        const auto u = static_cast<std::size_t>(t);
+        const std::size_t circle = players - 1;
+        const std::size_t a = u == 0 ? players - 1 : (round + u) % circle;
+        const std::size_t b = u == 0 ? round : (round + circle - u) % circle;
+        if (a >= stripes || b >= stripes) continue;  // the bye
+        pairs(stripe(a), stripe(b), sum_x + a * S, sum_y + a * S, sum_x + b * S, sum_y + b * S);
+      }
+    }
+  }
+  (void)threads;
+}
+
+// The direct kernels' sums of `bodies` (n of them, n_pad in its arrays:
+// whole vectors, massless after n) into (sum_x, sum_y): each pair once from
+// kStripesForPairs stripes on (sum_by_stripes), else each target's sum over
+// all sources, blocks of `block` targets side by side.
+template <typename T, typename OneSided, typename Pairs>
+void direct_sums(Bodies<T> bodies, std::size_t n_pad, std::size_t block, int threads, double* sum_x,
+                 double* sum_y, OneSided one_sided, Pairs pairs) {
+  const std::size_t n = bodies.n;
+  if (sums_pairs_once(n)) {
+    bodies.n = n_pad;
+    sum_by_stripes(bodies, threads, sum_x, sum_y, one_sided, pairs);
+    return;
+  }
+  const auto blocks = static_cast<std::ptrdiff_t>((n + block - 1) / block);
+#if defined(_OPENMP)
+#pragma omp parallel for schedule(static) num_threads(threads)
+#endif
+  for (std::ptrdiff_t b = 0; b < blocks; ++b) {
+    const std::size_t i0 = static_cast<std::size_t>(b) * block;
+    Bodies<T> targets = bodies;
+    targets.x += i0;
+    targets.y += i0;
+    if (bodies.x_lo != nullptr) targets.x_lo += i0;
+    if (bodies.y_lo != nullptr) targets.y_lo += i0;
+    targets.n = std::min(block, n - i0);
+    one_sided(targets, bodies, sum_x + i0, sum_y + i0);
+  }
+  (void)threads;
+}
+
+// A copy of `from` padded to `count` with `pad`.
+template <typename T>
+std::vector<T> padded(const T* from, std::size_t n, std::size_t count, T pad) {
+  std::vector<T> out(count, pad);
+  std::copy(from, from + n, out.begin());
+  return out;
+}
+
 }  // namespace detail
 
 Vec2 reference_acceleration(std::span<const double> x, std::span<const double> y,
@@ -221,66 +322,63 @@ void direct_accelerations(std::span<const double> x, std::span<const double> y,
   const detail::KernelTable& k = detail::kernels();
   // Below ~10^5 pairs (tens of microseconds) waking threads costs more than it saves.
   const int threads = n < 320 ? 1 : detail::thread_count(options);
-  std::vector<double> sum_x(n, 0.0);
-  std::vector<double> sum_y(n, 0.0);
+  // Each pair once: the bodies padded to whole vectors (massless copies of body 0).
+  const bool pairs_once = detail::sums_pairs_once(n);
+  const std::size_t lanes = std::max(k.group_block64, k.group_block32);
+  const std::size_t n_pad = pairs_once ? (n + lanes - 1) / lanes * lanes : n;
+  std::vector<double> sum_x(n_pad, 0.0);
+  std::vector<double> sum_y(n_pad, 0.0);
+  double factor = options.G;
 
   if (options.precision == Precision::float64) {
     detail::LawParams p = detail::law_params(options, detail::FloatFrame{});
     const auto [x0, x1] = std::minmax_element(x.begin(), x.end());
     const auto [y0, y1] = std::minmax_element(y.begin(), y.end());
     p.float_range = detail::float_range_of(std::max(*x1 - *x0, *y1 - *y0), p.eps2);
-    const detail::Bodies<double> sources{x.data(), y.data(), mass.data(), n};
-    const std::size_t block = k.block64;
-    const auto blocks = static_cast<std::ptrdiff_t>((n + block - 1) / block);
-#if defined(_OPENMP)
-#pragma omp parallel for schedule(static) num_threads(threads)
-#endif
-    for (std::ptrdiff_t b = 0; b < blocks; ++b) {
-      const std::size_t i0 = static_cast<std::size_t>(b) * block;
-      k.accumulate64(x.data() + i0, y.data() + i0, std::min(block, n - i0), sources, p,
-                     sum_x.data() + i0, sum_y.data() + i0);
-    }
-    for (std::size_t i = 0; i < n; ++i) {
-      ax[i] += options.G * sum_x[i];
-      ay[i] += options.G * sum_y[i];
-    }
+    const std::vector<double> px = detail::padded(x.data(), n, n_pad, x[0]);
+    const std::vector<double> py = detail::padded(y.data(), n, n_pad, y[0]);
+    const std::vector<double> pm = detail::padded(mass.data(), n, n_pad, 0.0);
+    detail::direct_sums(
+        detail::Bodies<double>{px.data(), py.data(), pm.data(), n}, n_pad, k.block64, threads,
+        sum_x.data(), sum_y.data(),
+        [&](const detail::Bodies<double>& t, const detail::Bodies<double>& s, double* out_x,
+            double* out_y) { k.accumulate64(t.x, t.y, t.n, s, p, out_x, out_y); },
+        [&](const detail::Bodies<double>& a, const detail::Bodies<double>& b, double* a_x,
+            double* a_y, double* b_x, double* b_y) { k.pairs64(a, b, p, a_x, a_y, b_x, b_y); });
   } else {
     const detail::FloatFrame frame = detail::float_frame(x, y, mass, options.G);
     const detail::LawParams p = detail::law_params(options, frame);
-    // Two-float positions: hi = the nearest float, lo = the rest (exact).
-    std::vector<float> fx(n);
-    std::vector<float> fy(n);
-    std::vector<float> fx_lo(n);
-    std::vector<float> fy_lo(n);
-    std::vector<float> fm(n);
-    for (std::size_t i = 0; i < n; ++i) {
-      const double px = (x[i] - frame.cx) * frame.scale;
-      const double py = (y[i] - frame.cy) * frame.scale;
+    // Two-float positions: hi = the nearest float, lo = the rest (exact);
+    // the padding is body 0's position with no mass.
+    std::vector<float> fx(n_pad);
+    std::vector<float> fy(n_pad);
+    std::vector<float> fx_lo(n_pad);
+    std::vector<float> fy_lo(n_pad);
+    std::vector<float> fm(n_pad, 0.0f);
+    for (std::size_t i = 0; i < n_pad; ++i) {
+      const double px = (x[i < n ? i : 0] - frame.cx) * frame.scale;
+      const double py = (y[i < n ? i : 0] - frame.cy) * frame.scale;
       fx[i] = static_cast<float>(px);
       fy[i] = static_cast<float>(py);
       fx_lo[i] = static_cast<float>(px - static_cast<double>(fx[i]));
       fy_lo[i] = static_cast<float>(py - static_cast<double>(fy[i]));
-      fm[i] = static_cast<float>(mass[i] * frame.mass_scale);
+      if (i < n) fm[i] = static_cast<float>(mass[i] * frame.mass_scale);
     }
-    detail::Bodies<float> sources{fx.data(), fy.data(), fm.data(), n};
-    sources.x_lo = fx_lo.data();
-    sources.y_lo = fy_lo.data();
-    const std::size_t block = k.block32;
-    const auto blocks = static_cast<std::ptrdiff_t>((n + block - 1) / block);
-#if defined(_OPENMP)
-#pragma omp parallel for schedule(static) num_threads(threads)
-#endif
-    for (std::ptrdiff_t b = 0; b < blocks; ++b) {
-      const std::size_t i0 = static_cast<std::size_t>(b) * block;
-      k.accumulate32(fx.data() + i0, fy.data() + i0, fx_lo.data() + i0, fy_lo.data() + i0,
-                     std::min(block, n - i0), sources, p, sum_x.data() + i0, sum_y.data() + i0);
-    }
-    for (std::size_t i = 0; i < n; ++i) {
-      ax[i] += frame.factor * sum_x[i];
-      ay[i] += frame.factor * sum_y[i];
-    }
+    detail::Bodies<float> bodies{fx.data(), fy.data(), fm.data(), n};
+    bodies.x_lo = fx_lo.data();
+    bodies.y_lo = fy_lo.data();
+    detail::direct_sums(
+        bodies, n_pad, k.block32, threads, sum_x.data(), sum_y.data(),
+        [&](const detail::Bodies<float>& t, const detail::Bodies<float>& s, double* out_x,
+            double* out_y) { k.accumulate32(t.x, t.y, t.x_lo, t.y_lo, t.n, s, p, out_x, out_y); },
+        [&](const detail::Bodies<float>& a, const detail::Bodies<float>& b, double* a_x,
+            double* a_y, double* b_x, double* b_y) { k.pairs32(a, b, p, a_x, a_y, b_x, b_y); });
+    factor = frame.factor;
   }
-  (void)threads;
+  for (std::size_t i = 0; i < n; ++i) {
+    ax[i] += factor * sum_x[i];
+    ay[i] += factor * sum_y[i];
+  }
 }
 
 const char* kernel_name() { return detail::kernels().name; }

@@ -11,13 +11,16 @@
 // R vectors of targets stays in registers while the sources stream past, one
 // broadcast source at a time. Each target's sum runs over the sources in
 // source order, in its own lane, so the result for a target does not depend
-// on which block, lane or thread computes it. The only intrinsics are the
+// on which block, lane or thread computes it. The pair kernels
+// (pairs_between) take each pair once and turn a vector of sources through
+// its lanes instead. The only intrinsics are the
 // reciprocal square root estimates (vrsqrtps, vrsqrt14ps/pd), which have no
 // portable spelling; the sqrt and the division of the other paths are plain
 // per-lane code that the compiler turns into vsqrtp*/vdivp*.
 #include <cstddef>
 #include <cstring>
 #include <type_traits>
+#include <utility>
 
 #include "kernels.hpp"
 
@@ -116,6 +119,16 @@ template <typename V>
   V v;
   std::memcpy(&v, p, sizeof v);
   return v;
+}
+
+// Lane l gets lane l + 1 (mod the lane count): one permute.
+template <typename V, std::size_t... K>
+[[gnu::always_inline]] inline V rotate_lanes(V v, std::index_sequence<K...>) {
+  return __builtin_shufflevector(v, v, ((K + 1) % sizeof...(K))...);
+}
+template <typename V>
+[[gnu::always_inline]] inline V rotate_lanes(V v) {
+  return rotate_lanes(v, std::make_index_sequence<kLanes<V>>{});
 }
 
 // Lane by lane; GCC turns the loop into one vsqrtp* (with -fno-math-errno).
@@ -469,6 +482,77 @@ struct VectorOf<float> {
   using type = VF;
 };
 
+// Pairs between two disjoint sets of bodies, each pair once (Newton's third
+// law): a's sums over b added to (a_x, a_y), b's over a to (b_x, b_y). Both
+// sizes are whole vectors, and at most kFloatTile (the caller pads with
+// massless bodies). A vector of b's bodies stays in registers and turns
+// through its lanes, one permute a turn: at turn k, lane l pairs a's body l
+// of each vector with b's body l + k (mod L), for every vector of a; b's
+// sums turn with b's bodies (after L turns all are back in place), a's are
+// in memory (the vector loop reads and writes them: loads and stores are not
+// what bounds it). Each sum runs in a fixed order, in float for float32 and
+// added in double at the end, as run_blocks' tiles.
+template <typename V, Law kLaw, bool kMasked, bool kSplit, bool kViaFloat = false>
+void pairs_between(const Bodies<typename Scalar<V>::type>& a,
+                   const Bodies<typename Scalar<V>::type>& b, V eps2, V lo, V hi, double* a_x,
+                   double* a_y, double* b_x, double* b_y) {
+  using T = typename Scalar<V>::type;
+  constexpr std::size_t L = kLanes<V>;
+  alignas(64) T sum_x[kFloatTile];
+  alignas(64) T sum_y[kFloatTile];
+  for (std::size_t i = 0; i < a.n; ++i) sum_x[i] = sum_y[i] = T(0);
+  const V one = splat<V>(T(1));
+  for (std::size_t j0 = 0; j0 < b.n; j0 += L) {
+    V xj = load<V>(b.x + j0);
+    V yj = load<V>(b.y + j0);
+    V xj_lo = kSplit ? load<V>(b.x_lo + j0) : V{};
+    V yj_lo = kSplit ? load<V>(b.y_lo + j0) : V{};
+    V mj = load<V>(b.m + j0);
+    V total_x{};
+    V total_y{};
+    for (std::size_t turn = 0; turn < L; ++turn) {
+      V jx{};
+      V jy{};
+      for (std::size_t i0 = 0; i0 < a.n; i0 += L) {
+        V dx = xj - load<V>(a.x + i0);
+        V dy = yj - load<V>(a.y + i0);
+        if constexpr (kSplit) {
+          dx = dx + (xj_lo - load<V>(a.x_lo + i0));
+          dy = dy + (yj_lo - load<V>(a.y_lo + i0));
+        }
+        const V w = weight<kLaw, kMasked, V, kViaFloat>(dx, dy, one, eps2, lo, hi);
+        const V wi = w * mj;
+        const V wj = w * load<V>(a.m + i0);
+        V ax = load<V>(sum_x + i0);
+        V ay = load<V>(sum_y + i0);
+        ax = wi * dx + ax;
+        ay = wi * dy + ay;
+        std::memcpy(sum_x + i0, &ax, sizeof ax);
+        std::memcpy(sum_y + i0, &ay, sizeof ay);
+        jx = jx - wj * dx;
+        jy = jy - wj * dy;
+      }
+      total_x = rotate_lanes(total_x + jx);
+      total_y = rotate_lanes(total_y + jy);
+      xj = rotate_lanes(xj);
+      yj = rotate_lanes(yj);
+      if constexpr (kSplit) {
+        xj_lo = rotate_lanes(xj_lo);
+        yj_lo = rotate_lanes(yj_lo);
+      }
+      mj = rotate_lanes(mj);
+    }
+    for (std::size_t l = 0; l < L; ++l) {
+      b_x[j0 + l] += static_cast<double>(total_x[l]);
+      b_y[j0 + l] += static_cast<double>(total_y[l]);
+    }
+  }
+  for (std::size_t i = 0; i < a.n; ++i) {
+    a_x[i] += static_cast<double>(sum_x[i]);
+    a_y[i] += static_cast<double>(sum_y[i]);
+  }
+}
+
 template <typename T>
 T eps2_of(const LawParams& p) {
   if constexpr (sizeof(T) == 4) {
@@ -536,6 +620,53 @@ void accumulate32(const float* tx, const float* ty, const float* tx_lo, const fl
   }
 }
 
+// pairs_between under the law of p.
+template <typename V, bool kSplit>
+void pairs_law(const Bodies<typename Scalar<V>::type>& a, const Bodies<typename Scalar<V>::type>& b,
+               const LawParams& p, double* a_x, double* a_y, double* b_x, double* b_y) {
+  using T = typename Scalar<V>::type;
+  const T eps2 = eps2_of<T>(p);
+  const V lo = splat<V>(sizeof(T) == 4 ? T(p.lo_f) : T(p.lo));
+  const V hi = splat<V>(sizeof(T) == 4 ? T(p.hi_f) : T(p.hi));
+  const V e = splat<V>(eps2);
+  switch (p.law) {
+    case Law::plummer:
+      if constexpr (kFloatEstimate && sizeof(T) == 8) {
+        if (p.float_range) {
+          pairs_between<V, Law::plummer, false, kSplit, true>(a, b, e, lo, hi, a_x, a_y, b_x, b_y);
+          break;
+        }
+      }
+      if (eps2 >= kTiny<V>) {
+        pairs_between<V, Law::plummer, false, kSplit>(a, b, e, lo, hi, a_x, a_y, b_x, b_y);
+      } else {
+        pairs_between<V, Law::plummer, true, kSplit>(a, b, e, lo, hi, a_x, a_y, b_x, b_y);
+      }
+      break;
+    case Law::clamp_distance:
+      pairs_between<V, Law::clamp_distance, true, kSplit>(a, b, e, lo, hi, a_x, a_y, b_x, b_y);
+      break;
+    case Law::clamp_squared_distance:
+      pairs_between<V, Law::clamp_squared_distance, true, kSplit>(a, b, e, lo, hi, a_x, a_y, b_x,
+                                                                  b_y);
+      break;
+  }
+}
+
+void pairs64(const Bodies<double>& a, const Bodies<double>& b, const LawParams& p, double* a_x,
+             double* a_y, double* b_x, double* b_y) {
+  pairs_law<VD, false>(a, b, p, a_x, a_y, b_x, b_y);
+}
+
+void pairs32(const Bodies<float>& a, const Bodies<float>& b, const LawParams& p, double* a_x,
+             double* a_y, double* b_x, double* b_y) {
+  if (a.x_lo != nullptr && a.y_lo != nullptr && b.x_lo != nullptr && b.y_lo != nullptr) {
+    pairs_law<VF, true>(a, b, p, a_x, a_y, b_x, b_y);
+  } else {
+    pairs_law<VF, false>(a, b, p, a_x, a_y, b_x, b_y);
+  }
+}
+
 template <typename T>
 void accumulate_multipole(const T* tx, const T* ty, std::size_t nt, const Nodes<T>& s,
                           const LawParams& p, double* out_x, double* out_y) {
@@ -557,7 +688,9 @@ const KernelTable& CALDER_NBODY_CAT(kernel_table_, CALDER_KERNEL_VARIANT)() {
                                  accumulate64<kGroupBlockVectors, true>,
                                  accumulate32<kGroupBlockVectors, true>,
                                  accumulate_multipole<double>,
-                                 accumulate_multipole<float>};
+                                 accumulate_multipole<float>,
+                                 pairs64,
+                                 pairs32};
   return table;
 }
 

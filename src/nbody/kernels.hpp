@@ -14,7 +14,10 @@
 //     clamp_squared_distance  w = 1 / (r q),    q = clamp(r^2, lo, hi)
 //
 // and w = 0 where p_s == p_t (a body on itself, coincident bodies) for the
-// clamped laws and for plummer with eps = 0.
+// clamped laws and for plummer with eps = 0. The pair kernels (Pairs64,
+// Pairs32) take each pair of two disjoint sets once and add it to both
+// bodies' sums, m_s w to the target's and m_t w (with -(p_s - p_t)) to the
+// source's: direct summation's larger systems (src/nbody/direct.cpp).
 #pragma once
 
 #include <cstddef>
@@ -100,6 +103,15 @@ using AccumulateMultipole32 = void (*)(const float* tx, const float* ty, std::si
                                        const Nodes<float>& nodes, const LawParams& law,
                                        double* out_x, double* out_y);
 
+// Pairs between two disjoint sets of bodies a and b, each pair once: adds
+// a's sums over b to (a_x, a_y) and b's sums over a to (b_x, b_y). a.n and
+// b.n are whole vectors (the group blocks' lane counts) and at most
+// kFloatTile; float32 sums run in float and are added in double.
+using Pairs64 = void (*)(const Bodies<double>& a, const Bodies<double>& b, const LawParams& law,
+                         double* a_x, double* a_y, double* b_x, double* b_y);
+using Pairs32 = void (*)(const Bodies<float>& a, const Bodies<float>& b, const LawParams& law,
+                         double* a_x, double* a_y, double* b_x, double* b_y);
+
 inline constexpr std::size_t kFloatTile = 512;
 
 struct KernelTable {
@@ -114,6 +126,8 @@ struct KernelTable {
   Accumulate32 group32;
   AccumulateMultipole64 multipole64;
   AccumulateMultipole32 multipole32;
+  Pairs64 pairs64;  // direct summation, each pair once (Newton's third law)
+  Pairs32 pairs32;
 };
 
 // The kernels for the instruction set the running CPU supports best among
