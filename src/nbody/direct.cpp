@@ -149,7 +149,9 @@ LawParams law_params(const Options& options, const FloatFrame& frame) {
 // Direct summation with each pair once (Newton's third law), for systems of
 // kStripesForPairs stripes of kFloatTile bodies or more (below, the one-sided
 // blocks cost little and share out better). The bodies, padded to whole
-// vectors with massless copies of body 0, are cut into stripes; a first
+// vectors with massless copies of body 0, are cut into stripes of as many
+// vectors as can be (at most kFloatTile bodies, so that the threads' pairs
+// of a round cost the same; a short last stripe held one thread back); a first
 // round sums each stripe over itself (one-sided), then the circle method's
 // rounds pair every two stripes once, each stripe in one pair a round at
 // most: the pairs of a round run side by side and add to disjoint sums, and
@@ -161,19 +163,22 @@ bool sums_pairs_once(std::size_t n) {
 }
 
 template <typename T, typename OneSided, typename Pairs>
-void sum_by_stripes(const Bodies<T>& bodies, int threads, double* sum_x, double* sum_y,
-                    OneSided one_sided, Pairs pairs) {
-  constexpr std::size_t S = kFloatTile;
-  const std::size_t stripes = (bodies.n + S - 1) / S;
+void sum_by_stripes(const Bodies<T>& bodies, std::size_t lanes, int threads, double* sum_x,
+                    double* sum_y, OneSided one_sided, Pairs pairs) {
+  const std::size_t stripes = (bodies.n + kFloatTile - 1) / kFloatTile;
+  const std::size_t vectors = bodies.n / lanes;  // (bodies.n: whole vectors)
+  // Stripe k: vectors k V / P to (k + 1) V / P (at most kFloatTile bodies:
+  // bodies.n <= P kFloatTile).
+  const auto first = [&](std::size_t k) { return k * vectors / stripes * lanes; };
   const auto stripe = [&](std::size_t k) {
     Bodies<T> b;
-    const std::size_t first = k * S;
-    b.x = bodies.x + first;
-    b.y = bodies.y + first;
-    b.m = bodies.m + first;
-    b.x_lo = bodies.x_lo == nullptr ? nullptr : bodies.x_lo + first;
-    b.y_lo = bodies.y_lo == nullptr ? nullptr : bodies.y_lo + first;
-    b.n = std::min(S, bodies.n - first);
+    const std::size_t from = first(k);
+    b.x = bodies.x + from;
+    b.y = bodies.y + from;
+    b.m = bodies.m + from;
+    b.x_lo = bodies.x_lo == nullptr ? nullptr : bodies.x_lo + from;
+    b.y_lo = bodies.y_lo == nullptr ? nullptr : bodies.y_lo + from;
+    b.n = first(k + 1) - from;
     return b;
   };
   const std::size_t players = stripes + stripes % 2;  // even: a bye when odd
@@ -189,7 +194,7 @@ void sum_by_stripes(const Bodies<T>& bodies, int threads, double* sum_x, double*
     for (std::ptrdiff_t k = 0; k < diagonal; ++k) {
       const auto u = static_cast<std::size_t>(k);
       const Bodies<T> own = stripe(u);
-      one_sided(own, own, sum_x + u * S, sum_y + u * S);
+      one_sided(own, own, sum_x + first(u), sum_y + first(u));
     }
     for (std::size_t round = 0; round + 1 < players; ++round) {
 #if defined(_OPENMP)
@@ -201,7 +206,8 @@ void sum_by_stripes(const Bodies<T>& bodies, int threads, double* sum_x, double*
         const std::size_t a = u == 0 ? players - 1 : (round + u) % circle;
         const std::size_t b = u == 0 ? round : (round + circle - u) % circle;
         if (a >= stripes || b >= stripes) continue;  // the bye
-        pairs(stripe(a), stripe(b), sum_x + a * S, sum_y + a * S, sum_x + b * S, sum_y + b * S);
+        pairs(stripe(a), stripe(b), sum_x + first(a), sum_y + first(a), sum_x + first(b),
+              sum_y + first(b));
       }
     }
   }
@@ -209,16 +215,16 @@ void sum_by_stripes(const Bodies<T>& bodies, int threads, double* sum_x, double*
 }
 
 // The direct kernels' sums of `bodies` (n of them, n_pad in its arrays:
-// whole vectors, massless after n) into (sum_x, sum_y): each pair once from
+// whole vectors of `lanes`, massless after n) into (sum_x, sum_y): each pair once from
 // kStripesForPairs stripes on (sum_by_stripes), else each target's sum over
 // all sources, blocks of `block` targets side by side.
 template <typename T, typename OneSided, typename Pairs>
-void direct_sums(Bodies<T> bodies, std::size_t n_pad, std::size_t block, int threads, double* sum_x,
-                 double* sum_y, OneSided one_sided, Pairs pairs) {
+void direct_sums(Bodies<T> bodies, std::size_t n_pad, std::size_t lanes, std::size_t block,
+                 int threads, double* sum_x, double* sum_y, OneSided one_sided, Pairs pairs) {
   const std::size_t n = bodies.n;
   if (sums_pairs_once(n)) {
     bodies.n = n_pad;
-    sum_by_stripes(bodies, threads, sum_x, sum_y, one_sided, pairs);
+    sum_by_stripes(bodies, lanes, threads, sum_x, sum_y, one_sided, pairs);
     return;
   }
   const auto blocks = static_cast<std::ptrdiff_t>((n + block - 1) / block);
@@ -339,8 +345,8 @@ void direct_accelerations(std::span<const double> x, std::span<const double> y,
     const std::vector<double> py = detail::padded(y.data(), n, n_pad, y[0]);
     const std::vector<double> pm = detail::padded(mass.data(), n, n_pad, 0.0);
     detail::direct_sums(
-        detail::Bodies<double>{px.data(), py.data(), pm.data(), n}, n_pad, k.block64, threads,
-        sum_x.data(), sum_y.data(),
+        detail::Bodies<double>{px.data(), py.data(), pm.data(), n}, n_pad, lanes, k.block64,
+        threads, sum_x.data(), sum_y.data(),
         [&](const detail::Bodies<double>& t, const detail::Bodies<double>& s, double* out_x,
             double* out_y) { k.accumulate64(t.x, t.y, t.n, s, p, out_x, out_y); },
         [&](const detail::Bodies<double>& a, const detail::Bodies<double>& b, double* a_x,
@@ -368,7 +374,7 @@ void direct_accelerations(std::span<const double> x, std::span<const double> y,
     bodies.x_lo = fx_lo.data();
     bodies.y_lo = fy_lo.data();
     detail::direct_sums(
-        bodies, n_pad, k.block32, threads, sum_x.data(), sum_y.data(),
+        bodies, n_pad, lanes, k.block32, threads, sum_x.data(), sum_y.data(),
         [&](const detail::Bodies<float>& t, const detail::Bodies<float>& s, double* out_x,
             double* out_y) { k.accumulate32(t.x, t.y, t.x_lo, t.y_lo, t.n, s, p, out_x, out_y); },
         [&](const detail::Bodies<float>& a, const detail::Bodies<float>& b, double* a_x,
