@@ -341,12 +341,17 @@ void direct_accelerations(std::span<const double> x, std::span<const double> y,
     const auto [x0, x1] = std::minmax_element(x.begin(), x.end());
     const auto [y0, y1] = std::minmax_element(y.begin(), y.end());
     p.float_range = detail::float_range_of(std::max(*x1 - *x0, *y1 - *y0), p.eps2);
-    const std::vector<double> px = detail::padded(x.data(), n, n_pad, x[0]);
-    const std::vector<double> py = detail::padded(y.data(), n, n_pad, y[0]);
-    const std::vector<double> pm = detail::padded(mass.data(), n, n_pad, 0.0);
+    // The caller's arrays, or copies padded to whole vectors where the pairs need them.
+    detail::Bodies<double> bodies{x.data(), y.data(), mass.data(), n};
+    std::vector<double> px, py, pm;
+    if (n_pad != n) {
+      px = detail::padded(x.data(), n, n_pad, x[0]);
+      py = detail::padded(y.data(), n, n_pad, y[0]);
+      pm = detail::padded(mass.data(), n, n_pad, 0.0);
+      bodies = {px.data(), py.data(), pm.data(), n};
+    }
     detail::direct_sums(
-        detail::Bodies<double>{px.data(), py.data(), pm.data(), n}, n_pad, lanes, k.block64,
-        threads, sum_x.data(), sum_y.data(),
+        bodies, n_pad, lanes, k.block64, threads, sum_x.data(), sum_y.data(),
         [&](const detail::Bodies<double>& t, const detail::Bodies<double>& s, double* out_x,
             double* out_y) { k.accumulate64(t.x, t.y, t.n, s, p, out_x, out_y); },
         [&](const detail::Bodies<double>& a, const detail::Bodies<double>& b, double* a_x,
