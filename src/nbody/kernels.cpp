@@ -227,6 +227,46 @@ template <typename V>
   }
 }
 
+// Plummer's r^-3 for r2 > 0, scaled: r^-3 = kCubeScale<V> cube_scaled(r2)
+// (the caller folds the constant into the masses).
+// float32 with AVX-512 takes it from the estimate alone: y = rsqrt14(r2) is
+// within 2^-14, so e = r2 y^2 - 1 is within 2^-13, and
+//   r^-3 = y^3 (1 + e)^(-3/2) = y^3 (1 - 1.5 e + 1.875 e^2 - ...)
+//        ~ S y^3 (A - r2 y^2),  S (A - 1) = 1, slope -S = -1.5:
+// four operations (y^2, y^3, one fnmadd, a product) where a Newton step and
+// the cube take five; the dropped 1.875 e^2 is below 2.8e-8 relative, under
+// float's rounding (a Newton step's cube leaves 1.125 e^2). A and S are the
+// floats nearest 5/3 and 3/2 with S (A - 1) = 1 - 2^-44: A = RN(5/3) - 1 ulp,
+// S = 1.5 + 3 ulps (RN(5/3) and 1.5 would bias every force by -6e-8).
+// Elsewhere: the Newton steps' 2 / r, cubed (S = 1/8). A zmm vrsqrt14ps is
+// three uops (two of them on port 0; it issues every 2 cycles), so each
+// operation saved around it counts.
+#if defined(__AVX512F__)
+template <typename V>
+constexpr bool kCubeFromEstimate = sizeof(typename Scalar<V>::type) == 4;
+#else
+template <typename V>
+constexpr bool kCubeFromEstimate = false;
+#endif
+
+template <typename V>
+[[maybe_unused]] constexpr typename Scalar<V>::type kCubeScale =
+    kCubeFromEstimate<V>
+        ? 0x1.800006p+0f
+        : typename Scalar<V>::type(1) / (kLastStepScale<V> * kLastStepScale<V> * kLastStepScale<V>);
+
+template <typename V>
+[[gnu::always_inline]] inline V cube_scaled(V r2) {
+  if constexpr (kCubeFromEstimate<V>) {
+    const V y = rsqrt_estimate(r2);
+    const V y2 = y * y;
+    return (y * y2) * (0x1.aaaaa8p+0f - r2 * y2);
+  } else {
+    const V y = rsqrt_scaled(r2);  // 2 / r
+    return y * (y * y);
+  }
+}
+
 // The law's weight times the source mass, for one vector of pairs: returns
 // m w(r) with r^2 = dx^2 + dy^2 (see kernels.hpp). Masked: zero where
 // r^2 < kTiny (the same place, to the type's precision).
@@ -244,6 +284,8 @@ template <Law kLaw, bool kMasked, typename V, bool kViaFloat = false>
     r2 = dy * dy + r2;
     if constexpr (kNewtonSteps<V> == 0) {
       w = m / (r2 * vsqrt(r2));
+    } else if constexpr (kCubeFromEstimate<V>) {
+      w = (m * kCubeScale<V>)*cube_scaled(r2);
     } else {
       const V y = rsqrt_scaled(r2);  // 2 / r
       constexpr T k = T(1) / (kLastStepScale<V> * kLastStepScale<V> * kLastStepScale<V>);
@@ -485,68 +527,153 @@ struct VectorOf<float> {
 // Pairs between two disjoint sets of bodies, each pair once (Newton's third
 // law): a's sums over b added to (a_x, a_y), b's over a to (b_x, b_y). Both
 // sizes are whole vectors, and at most kFloatTile (the caller pads with
-// massless bodies). A vector of b's bodies stays in registers and turns
-// through its lanes, one permute a turn: at turn k, lane l pairs a's body l
+// massless bodies). U vectors of b's bodies stay in registers and turn
+// through their lanes, one permute a turn: at turn k, lane l pairs a's body l
 // of each vector with b's body l + k (mod L), for every vector of a; b's
 // sums turn with b's bodies (after L turns all are back in place), a's are
 // in memory (the vector loop reads and writes them: loads and stores are not
 // what bounds it). Each sum runs in a fixed order, in float for float32 and
 // added in double at the end, as run_blocks' tiles.
+//
+// U = kPairVectors: two vectors of b a pass where the registers hold them
+// (AVX-512's 32): a's loads and stores serve two, and two independent pair
+// chains overlap: 11 cycles for 16 float32 pairs instead of 12.7 (one
+// thread, a 512 x 512 stripe pair in L1).
+#if defined(__AVX512F__)
+constexpr std::size_t kPairVectors = 2;
+#else
+constexpr std::size_t kPairVectors = 1;
+#endif
+
+// What pairs_between's passes share: a's bodies with their masses times
+// `scale` (mass), a's sums, and the law's constants.
+template <typename V>
+struct PairPass {
+  using T = typename Scalar<V>::type;
+  const Bodies<T>& a;
+  const Bodies<T>& b;
+  const T* mass;
+  T* sum_x;
+  T* sum_y;
+  T scale;
+  V eps2, lo, hi;
+};
+
+// pairs_between's weight of a pair, without the masses: Plummer's law with
+// an estimate gives cube_scaled (the masses carry kCubeScale), the other laws
+// weight() with unit mass.
+template <Law kLaw, bool kMasked, typename V, bool kViaFloat>
+constexpr bool kPairCube = kLaw == Law::plummer && !kViaFloat && kNewtonSteps<V> != 0;
+
+template <Law kLaw, bool kMasked, typename V, bool kViaFloat>
+[[gnu::always_inline]] inline V pair_weight(V dx, V dy, V eps2, V lo, V hi) {
+  if constexpr (kPairCube<kLaw, kMasked, V, kViaFloat>) {
+    V r2 = dx * dx + eps2;
+    r2 = dy * dy + r2;
+    const V w = cube_scaled(r2);
+    if constexpr (kMasked) return r2 >= kTiny<V> ? w : V{};
+    return w;
+  } else {
+    return weight<kLaw, kMasked, V, kViaFloat>(dx, dy, splat<V>(1), eps2, lo, hi);
+  }
+}
+
+// One pass: b's vectors j0 to j0 + U L against all of a, L turns.
+template <typename V, std::size_t U, Law kLaw, bool kMasked, bool kSplit, bool kViaFloat>
+void pairs_pass(const PairPass<V>& p, std::size_t j0, double* b_x, double* b_y) {
+  using T = typename Scalar<V>::type;
+  constexpr std::size_t L = kLanes<V>;
+  V xj[U], yj[U], xj_lo[U], yj_lo[U], mj[U], total_x[U], total_y[U];
+  for (std::size_t u = 0; u < U; ++u) {
+    const std::size_t j = j0 + u * L;
+    xj[u] = load<V>(p.b.x + j);
+    yj[u] = load<V>(p.b.y + j);
+    xj_lo[u] = kSplit ? load<V>(p.b.x_lo + j) : V{};
+    yj_lo[u] = kSplit ? load<V>(p.b.y_lo + j) : V{};
+    mj[u] = load<V>(p.b.m + j) * p.scale;
+    total_x[u] = total_y[u] = V{};
+  }
+  // (Locals: the stores to the sums could alias p's members.)
+  const T* const x = p.a.x;
+  const T* const y = p.a.y;
+  const T* const x_lo = p.a.x_lo;
+  const T* const y_lo = p.a.y_lo;
+  const T* const mass = p.mass;
+  T* const sum_x = p.sum_x;
+  T* const sum_y = p.sum_y;
+  const std::size_t n = p.a.n;
+  const V eps2 = p.eps2;
+  const V lo = p.lo;
+  const V hi = p.hi;
+  for (std::size_t turn = 0; turn < L; ++turn) {
+    V jx[U], jy[U];
+    for (std::size_t u = 0; u < U; ++u) jx[u] = jy[u] = V{};
+    for (std::size_t i0 = 0; i0 < n; i0 += L) {
+      const V xi = load<V>(x + i0);
+      const V yi = load<V>(y + i0);
+      const V xi_lo = kSplit ? load<V>(x_lo + i0) : V{};
+      const V yi_lo = kSplit ? load<V>(y_lo + i0) : V{};
+      const V mi = load<V>(mass + i0);
+      V ax = load<V>(sum_x + i0);
+      V ay = load<V>(sum_y + i0);
+      for (std::size_t u = 0; u < U; ++u) {
+        V dx = xj[u] - xi;
+        V dy = yj[u] - yi;
+        if constexpr (kSplit) {
+          dx = dx + (xj_lo[u] - xi_lo);
+          dy = dy + (yj_lo[u] - yi_lo);
+        }
+        const V w = pair_weight<kLaw, kMasked, V, kViaFloat>(dx, dy, eps2, lo, hi);
+        const V wi = w * mj[u];
+        const V wj = w * mi;
+        ax = wi * dx + ax;
+        ay = wi * dy + ay;
+        jx[u] = jx[u] - wj * dx;
+        jy[u] = jy[u] - wj * dy;
+      }
+      std::memcpy(sum_x + i0, &ax, sizeof ax);
+      std::memcpy(sum_y + i0, &ay, sizeof ay);
+    }
+    for (std::size_t u = 0; u < U; ++u) {
+      total_x[u] = rotate_lanes(total_x[u] + jx[u]);
+      total_y[u] = rotate_lanes(total_y[u] + jy[u]);
+      xj[u] = rotate_lanes(xj[u]);
+      yj[u] = rotate_lanes(yj[u]);
+      if constexpr (kSplit) {
+        xj_lo[u] = rotate_lanes(xj_lo[u]);
+        yj_lo[u] = rotate_lanes(yj_lo[u]);
+      }
+      mj[u] = rotate_lanes(mj[u]);
+    }
+  }
+  for (std::size_t k = 0; k < U * L; ++k) {
+    b_x[j0 + k] += static_cast<double>(total_x[k / L][k % L]);
+    b_y[j0 + k] += static_cast<double>(total_y[k / L][k % L]);
+  }
+}
+
 template <typename V, Law kLaw, bool kMasked, bool kSplit, bool kViaFloat = false>
 void pairs_between(const Bodies<typename Scalar<V>::type>& a,
                    const Bodies<typename Scalar<V>::type>& b, V eps2, V lo, V hi, double* a_x,
                    double* a_y, double* b_x, double* b_y) {
   using T = typename Scalar<V>::type;
   constexpr std::size_t L = kLanes<V>;
+  // Plummer's law with an estimate: both sides' masses carry kCubeScale, one
+  // product a pair fewer.
+  constexpr bool kCube = kPairCube<kLaw, kMasked, V, kViaFloat>;
   alignas(64) T sum_x[kFloatTile];
   alignas(64) T sum_y[kFloatTile];
-  for (std::size_t i = 0; i < a.n; ++i) sum_x[i] = sum_y[i] = T(0);
-  const V one = splat<V>(T(1));
-  for (std::size_t j0 = 0; j0 < b.n; j0 += L) {
-    V xj = load<V>(b.x + j0);
-    V yj = load<V>(b.y + j0);
-    V xj_lo = kSplit ? load<V>(b.x_lo + j0) : V{};
-    V yj_lo = kSplit ? load<V>(b.y_lo + j0) : V{};
-    V mj = load<V>(b.m + j0);
-    V total_x{};
-    V total_y{};
-    for (std::size_t turn = 0; turn < L; ++turn) {
-      V jx{};
-      V jy{};
-      for (std::size_t i0 = 0; i0 < a.n; i0 += L) {
-        V dx = xj - load<V>(a.x + i0);
-        V dy = yj - load<V>(a.y + i0);
-        if constexpr (kSplit) {
-          dx = dx + (xj_lo - load<V>(a.x_lo + i0));
-          dy = dy + (yj_lo - load<V>(a.y_lo + i0));
-        }
-        const V w = weight<kLaw, kMasked, V, kViaFloat>(dx, dy, one, eps2, lo, hi);
-        const V wi = w * mj;
-        const V wj = w * load<V>(a.m + i0);
-        V ax = load<V>(sum_x + i0);
-        V ay = load<V>(sum_y + i0);
-        ax = wi * dx + ax;
-        ay = wi * dy + ay;
-        std::memcpy(sum_x + i0, &ax, sizeof ax);
-        std::memcpy(sum_y + i0, &ay, sizeof ay);
-        jx = jx - wj * dx;
-        jy = jy - wj * dy;
-      }
-      total_x = rotate_lanes(total_x + jx);
-      total_y = rotate_lanes(total_y + jy);
-      xj = rotate_lanes(xj);
-      yj = rotate_lanes(yj);
-      if constexpr (kSplit) {
-        xj_lo = rotate_lanes(xj_lo);
-        yj_lo = rotate_lanes(yj_lo);
-      }
-      mj = rotate_lanes(mj);
-    }
-    for (std::size_t l = 0; l < L; ++l) {
-      b_x[j0 + l] += static_cast<double>(total_x[l]);
-      b_y[j0 + l] += static_cast<double>(total_y[l]);
-    }
+  alignas(64) T mass[kFloatTile];
+  const PairPass<V> pass{a, b, mass, sum_x, sum_y, kCube ? kCubeScale<V> : T(1), eps2, lo, hi};
+  for (std::size_t i = 0; i < a.n; ++i) {
+    sum_x[i] = sum_y[i] = T(0);
+    mass[i] = a.m[i] * pass.scale;
   }
+  std::size_t j0 = 0;
+  for (; b.n - j0 >= kPairVectors * L; j0 += kPairVectors * L) {
+    pairs_pass<V, kPairVectors, kLaw, kMasked, kSplit, kViaFloat>(pass, j0, b_x, b_y);
+  }
+  for (; j0 < b.n; j0 += L) pairs_pass<V, 1, kLaw, kMasked, kSplit, kViaFloat>(pass, j0, b_x, b_y);
   for (std::size_t i = 0; i < a.n; ++i) {
     a_x[i] += static_cast<double>(sum_x[i]);
     a_y[i] += static_cast<double>(sum_y[i]);
