@@ -152,7 +152,7 @@ LawParams law_params(const Options& options, const FloatFrame& frame) {
 // vectors with massless copies of body 0, are cut into stripes of as many
 // vectors as can be (at most kFloatTile bodies, so that the threads' pairs
 // of a round cost the same; a short last stripe held one thread back); a first
-// round sums each stripe over itself (one-sided), then the circle method's
+// round sums each stripe over itself (self_pairs), then the circle method's
 // rounds pair every two stripes once, each stripe in one pair a round at
 // most: the pairs of a round run side by side and add to disjoint sums, and
 // each body's sum runs in round order, the same for any thread count.
@@ -160,6 +160,35 @@ inline constexpr std::size_t kStripesForPairs = 8;
 
 bool sums_pairs_once(std::size_t n) {
   return (n + kFloatTile - 1) / kFloatTile >= kStripesForPairs;
+}
+
+// A stripe's pairs among its own bodies: halves of whole vectors pair each
+// other once, down to kSelfVectors vectors, which sum over themselves
+// (one-sided: every pair twice, which below a few vectors costs less than
+// the splits).
+inline constexpr std::size_t kSelfVectors = 4;
+
+template <typename T, typename OneSided, typename Pairs>
+void self_pairs(const Bodies<T>& own, std::size_t lanes, double* sum_x, double* sum_y,
+                OneSided& one_sided, Pairs& pairs) {
+  const std::size_t vectors = own.n / lanes;
+  if (vectors <= kSelfVectors) {
+    one_sided(own, own, sum_x, sum_y);
+    return;
+  }
+  const std::size_t half = vectors / 2 * lanes;
+  Bodies<T> lower = own;
+  lower.n = half;
+  Bodies<T> upper = own;
+  upper.x += half;
+  upper.y += half;
+  upper.m += half;
+  if (own.x_lo != nullptr) upper.x_lo += half;
+  if (own.y_lo != nullptr) upper.y_lo += half;
+  upper.n = own.n - half;
+  pairs(lower, upper, sum_x, sum_y, sum_x + half, sum_y + half);
+  self_pairs(lower, lanes, sum_x, sum_y, one_sided, pairs);
+  self_pairs(upper, lanes, sum_x + half, sum_y + half, one_sided, pairs);
 }
 
 template <typename T, typename OneSided, typename Pairs>
@@ -193,8 +222,7 @@ void sum_by_stripes(const Bodies<T>& bodies, std::size_t lanes, int threads, dou
 #endif
     for (std::ptrdiff_t k = 0; k < diagonal; ++k) {
       const auto u = static_cast<std::size_t>(k);
-      const Bodies<T> own = stripe(u);
-      one_sided(own, own, sum_x + first(u), sum_y + first(u));
+      self_pairs(stripe(u), lanes, sum_x + first(u), sum_y + first(u), one_sided, pairs);
     }
     for (std::size_t round = 0; round + 1 < players; ++round) {
 #if defined(_OPENMP)
