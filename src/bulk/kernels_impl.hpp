@@ -786,14 +786,28 @@ template <class R, class Last>
   last([=](Block<R>& b) CALDER_BULK_INLINE { update(b, boundary, walls, width, height, dt); });
 }
 
-// WebAssembly: a book kernel's gravity_scaled op just before the last op
-// runs in the last pass (its two divisions beside the last op's), not in a
-// pass of its own: V8's code for a pass costs more per vector than GCC's, in
-// loads, stores and loop overhead. Same operations in the same order.
-#if defined(__wasm__)
+// A book kernel's gravity_scaled op just before the last op runs in the
+// last op's pass (its quotients beside the last op's), not in a pass of its
+// own: WebAssembly, because V8's code for a pass costs more per vector than
+// GCC's, in loads, stores and loop overhead; native, because its
+// multiplications overlap the drag's square root and division (book rain,
+// one thread: AVX2 1.02x, AVX-512 1.07x, with kUpdatePass). Same operations
+// in the same order.
 constexpr bool kFuseGravityTarget = true;
+
+// Native book kernels run the update (velocity, position, bounce) in a pass
+// of its own after the last op's, not in it: the drag's chain (square root,
+// division, quotients by the mass) and the update's after it make the
+// longest chain of a step, and in one loop the operations waiting on it fill
+// the out-of-order window (book rain at 10^5, one thread: AVX2 3.06e8 ->
+// 3.57e8 body-steps/s, AVX-512 4.54e8 -> 4.81e8). A pass of its own for
+// the drag's square root and division too was slower (3.0e8 on AVX2): alone,
+// they wait on the divider instead of overlapping the rest. WebAssembly
+// keeps one pass (V8's passes cost more, above).
+#if defined(__wasm__)
+constexpr bool kUpdatePass = false;
 #else
-constexpr bool kFuseGravityTarget = false;
+constexpr bool kUpdatePass = true;
 #endif
 
 // How a step runs the ops: `passes` lists the ops that need a pass over the
@@ -857,10 +871,48 @@ template <class R, class FirstLoad, class Body>
   chunk.numerators = seen;
 }
 
+// The last pass of a step: the fused gravity (`before`), the last op
+// (`force`) and the update, in one loop, or in two (kUpdatePass). The
+// functions are parameters, so local copies: else the stores below (memcpy:
+// may alias anything) make every vector read them again through closures
+// (WebAssembly).
+template <class R, bool kBook, class FirstLoad, class Before, class Force, class Update>
+[[gnu::always_inline]] inline void last_pass(Chunk<R>& to, std::size_t vectors, bool alone,
+                                             FirstLoad first_load, Before before, Force force,
+                                             Update update) {
+  using V = typename Simd<R>::V;
+  const auto store_state = [&to](const Block<R>& b) CALDER_BULK_INLINE {
+    __builtin_memcpy(to.x.values + b.at, &b.x, sizeof(V));
+    __builtin_memcpy(to.y.values + b.at, &b.y, sizeof(V));
+    __builtin_memcpy(to.vx.values + b.at, &b.vx, sizeof(V));
+    __builtin_memcpy(to.vy.values + b.at, &b.vy, sizeof(V));
+  };
+  if constexpr (kBook && kUpdatePass) {
+    each_vector(to, vectors, alone, first_load, [&](Block<R>& b) CALDER_BULK_INLINE {
+      before(b);
+      force(b);
+      __builtin_memcpy(to.ax.values + b.at, &b.ax, sizeof(V));
+      __builtin_memcpy(to.ay.values + b.at, &b.ay, sizeof(V));
+    });
+    each_vector(to, vectors, false, first_load, [&](Block<R>& b) CALDER_BULK_INLINE {
+      update(b);
+      store_state(b);
+    });
+  } else {
+    each_vector(to, vectors, alone, first_load, [&](Block<R>& b) CALDER_BULK_INLINE {
+      before(b);
+      force(b);
+      update(b);
+      store_state(b);
+    });
+  }
+}
+
 // Runs one step of the batch (step 0: kFirst) over a chunk of `vectors`
 // vectors: one pass over the chunk per op, each adding its force to the
 // accelerations in the chunk, but the last op's pass also runs the update, in
-// registers, and stores only positions and velocities. The accelerations are
+// registers, and stores only positions and velocities (the native book
+// kernels: the update in a pass of its own, kUpdatePass). The accelerations are
 // the tile's on the first step and +0 on the others (the update clears them),
 // so the first pass of a later step doesn't read them; the two kinds of step
 // are two copies of the loops, so that no vector tests which it is. (One pass
@@ -911,19 +963,7 @@ void advance_step(const Plan& plan, Chunk<R>& chunk, std::size_t vectors,
   const bool alone = how.own <= 1;
   const auto last = [&](auto update_one, auto before) CALDER_BULK_INLINE {
     const auto each = [&](auto force) CALDER_BULK_PASS {
-      const auto op = force;  // local copies, as above
-      const auto before_op = before;
-      const auto update_local = update_one;
-      Chunk<R>& to = chunk;
-      each_vector(to, vectors, alone, first_load, [&](Block<R>& b) CALDER_BULK_INLINE {
-        before_op(b);
-        op(b);
-        update_local(b);
-        __builtin_memcpy(to.x.values + b.at, &b.x, sizeof(V));
-        __builtin_memcpy(to.y.values + b.at, &b.y, sizeof(V));
-        __builtin_memcpy(to.vx.values + b.at, &b.vx, sizeof(V));
-        __builtin_memcpy(to.vy.values + b.at, &b.vy, sizeof(V));
-      });
+      last_pass<R, kBook>(chunk, vectors, alone, first_load, before, force, update_one);
     };
     if (passes.empty()) return each([](Block<R>&) CALDER_BULK_INLINE {});
     const std::size_t k = passes.back();
