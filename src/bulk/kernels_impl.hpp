@@ -804,10 +804,14 @@ constexpr bool kFuseGravityTarget = true;
 // the drag's square root and division too was slower (3.0e8 on AVX2): alone,
 // they wait on the divider instead of overlapping the rest. WebAssembly
 // keeps one pass (V8's passes cost more, above).
+// The fast float32 kernels too with AVX2 (1.06x at 10^5), not float64 (0.85x:
+// its chain is short, and the pass adds loads and stores) nor AVX-512 (1x).
 #if defined(__wasm__)
+template <class R, bool kBook>
 constexpr bool kUpdatePass = false;
 #else
-constexpr bool kUpdatePass = true;
+template <class R, bool kBook>
+constexpr bool kUpdatePass = kBook || (sizeof(R) == 4 && kVectorBytes == 32);
 #endif
 
 // How a step runs the ops: `passes` lists the ops that need a pass over the
@@ -887,7 +891,7 @@ template <class R, bool kBook, class FirstLoad, class Before, class Force, class
     __builtin_memcpy(to.vx.values + b.at, &b.vx, sizeof(V));
     __builtin_memcpy(to.vy.values + b.at, &b.vy, sizeof(V));
   };
-  if constexpr (kBook && kUpdatePass) {
+  if constexpr (kUpdatePass<R, kBook>) {
     each_vector(to, vectors, alone, first_load, [&](Block<R>& b) CALDER_BULK_INLINE {
       before(b);
       force(b);
