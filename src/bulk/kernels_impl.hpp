@@ -856,8 +856,11 @@ Passes<R> plan_passes(const Plan& plan, std::vector<std::size_t>& passes) {
 template <class R, class FirstLoad, class Body>
 [[gnu::always_inline]] inline void each_vector(Chunk<R>& chunk, std::size_t vectors, bool first,
                                                FirstLoad first_load, Body body) {
+  // Two vectors an iteration: their chains side by side (AVX2, at 10^5: book
+  // 1.02x, float64 1.03x, float32 1.08x; SSE2 book 1.08x; AVX-512 1x).
   Numerators<R> seen = chunk.numerators;  // in registers through the loop
   if (first) {
+#pragma GCC unroll 2
     for (std::size_t v = 0; v < vectors; ++v) {
       Block<R> b = first_load(v);
       b.numerators = seen;
@@ -865,6 +868,7 @@ template <class R, class FirstLoad, class Body>
       seen = b.numerators;
     }
   } else {
+#pragma GCC unroll 2
     for (std::size_t v = 0; v < vectors; ++v) {
       Block<R> b = load_block(chunk, v, true);
       b.numerators = seen;
