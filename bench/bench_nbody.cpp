@@ -16,6 +16,9 @@
 //                                     floor_pairs/s counters divide it by the
 //                                     flops of one interaction of each kernel
 //                                     (peers/fma_peak.hpp)
+//   EstimateRate/bits                 the reciprocal square root estimate's
+//                                     issue rate against the FMA's (vs_fma),
+//                                     one thread (peers/fma_peak.hpp)
 //   BarnesHut/N/precision/threads/theta100
 //                                     one evaluation at the default theta,
 //                                     calder::kDefaultTheta (and 0.47, 0.5 at
@@ -31,6 +34,7 @@
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cstddef>
 #include <cstdint>
 #include <map>
@@ -134,6 +138,34 @@ void FmaPeak(benchmark::State& state) {
 }
 // Registered in main() for the widths this CPU has (peers::fma_widths()).
 
+// The reciprocal square root estimate's issue rate against the FMA's, one
+// thread, each timed alone: vs_fma = estimates/s / FMAs/s. A 512-bit
+// vrsqrt14ps is three micro-ops, two of them on the FMA port 0, and issues
+// every other cycle where FMAs issue twice a cycle (vs_fma about 0.27): in
+// the float32 pair kernels, one estimate a vector of pairs costs the time of
+// 3 to 4 FMAs.
+void EstimateRate(benchmark::State& state) {
+  const auto bits = static_cast<int>(state.range(0));
+  constexpr std::int64_t kRounds = 20'000'000;
+  const double lanes = bits / 32.0;
+  double fma_seconds = 0.0;
+  double estimate_seconds = 0.0;
+  double fmas = 0.0;
+  double estimates = 0.0;
+  for (auto _ : state) {
+    auto start = std::chrono::steady_clock::now();
+    fmas += peers::fma_flops(bits, 1, kRounds) / (2.0 * lanes);
+    auto middle = std::chrono::steady_clock::now();
+    estimates += peers::rsqrt_estimates(bits, kRounds);
+    fma_seconds += std::chrono::duration<double>(middle - start).count();
+    estimate_seconds +=
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - middle).count();
+  }
+  state.counters["fmas/s"] = fmas / fma_seconds;
+  state.counters["estimates/s"] = estimates / estimate_seconds;
+  state.counters["vs_fma"] = (estimates / estimate_seconds) / (fmas / fma_seconds);
+}
+
 // -------------------------------------------------------------- Barnes-Hut ---
 
 // The exact accelerations of all bodies (N <= 10^4: direct, float64) or of
@@ -221,6 +253,12 @@ int main(int argc, char** argv) {
   benchmark::internal::Benchmark* fma = benchmark::RegisterBenchmark("FmaPeak", FmaPeak);
   fma->ArgNames({"bits", "threads"})->UseRealTime();
   for (const int bits : peers::fma_widths()) fma->Args({bits, 1})->Args({bits, 2});
+#if defined(__x86_64__) || defined(__i386__)
+  benchmark::internal::Benchmark* estimate =
+      benchmark::RegisterBenchmark("EstimateRate", EstimateRate);
+  estimate->ArgNames({"bits"})->UseRealTime();
+  for (const int bits : peers::fma_widths()) estimate->Args({bits});
+#endif
   benchmark::AddCustomContext("calder_nbody_kernels", nb::kernel_name());
   benchmark::AddCustomContext("calder_nbody_max_threads", std::to_string(nb::max_threads()));
   benchmark::Initialize(&argc, argv);

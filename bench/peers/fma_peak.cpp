@@ -10,6 +10,10 @@
 #include <string>
 #include <thread>
 
+#if defined(__x86_64__) || defined(__i386__)
+#include <immintrin.h>
+#endif
+
 namespace calder::peers {
 
 namespace {
@@ -54,7 +58,45 @@ template <typename V>
 }
 
 #if defined(__x86_64__) || defined(__i386__)
-[[gnu::target("avx512f,avx2,fma")]] double chains512(std::int64_t rounds) {
+// 512-bit functions: Clang, tuned for a CPU that prefers 256-bit vectors (as
+// -march=native does on AVX-512 Xeons), splits 512-bit vector code into
+// halves unless the function asks for the width (GCC keeps it whole).
+#if defined(__clang__)
+#define CALDER_WIDE_512 __attribute__((min_vector_width(512)))
+#else
+#define CALDER_WIDE_512
+#endif
+
+// kChains chains of reciprocal square root estimates (their fixed point is
+// 1: no denormals); returns how many ran. A macro, not a template: the
+// intrinsics need their instruction set, which only a function with the
+// target attribute has (a template's body is compiled without it).
+#define CALDER_ESTIMATE_CHAINS(name, isa, V, estimate)                                \
+  [[gnu::target(isa)]] CALDER_WIDE_512 double name(std::int64_t rounds) {             \
+    const V zero = {};                                                                \
+    V acc[kChains];                                                                   \
+    _Pragma("GCC unroll 12") for (std::size_t c = 0; c < kChains; ++c) acc[c] =       \
+        zero + (1.5f + static_cast<float>(c));                                        \
+    for (std::int64_t r = 0; r < rounds; ++r) {                                       \
+      _Pragma("GCC unroll 12") for (std::size_t c = 0; c < kChains; ++c) acc[c] =     \
+          estimate(acc[c]);                                                           \
+      asm volatile("" ::: "memory");                                                  \
+    }                                                                                 \
+    V sum = acc[0];                                                                   \
+    _Pragma("GCC unroll 12") for (std::size_t c = 1; c < kChains; ++c) sum += acc[c]; \
+    sink = sum[0];                                                                    \
+    return static_cast<double>(kChains) * static_cast<double>(rounds);                \
+  }
+#define CALDER_RSQRT14_512(v) Float512(_mm512_maskz_rsqrt14_ps(0xFFFF, __m512(v)))
+#define CALDER_RSQRT_256(v) Float256(_mm256_rsqrt_ps(__m256(v)))
+#define CALDER_RSQRT_128(v) Float128(_mm_rsqrt_ps(__m128(v)))
+CALDER_ESTIMATE_CHAINS(estimates512, "avx512f,avx2,fma", Float512, CALDER_RSQRT14_512)
+CALDER_ESTIMATE_CHAINS(estimates256, "avx2,fma", Float256, CALDER_RSQRT_256)
+CALDER_ESTIMATE_CHAINS(estimates128, "sse", Float128, CALDER_RSQRT_128)
+#endif
+
+#if defined(__x86_64__) || defined(__i386__)
+[[gnu::target("avx512f,avx2,fma")]] CALDER_WIDE_512 double chains512(std::int64_t rounds) {
   return chains<Float512>(rounds);
 }
 [[gnu::target("avx2,fma")]] double chains256(std::int64_t rounds) {
@@ -104,6 +146,18 @@ double fma_flops(int bits, int threads, std::int64_t rounds) {
   double flops = run(rounds);
   for (auto& t : pool) t.join();
   return flops * threads;
+}
+
+double rsqrt_estimates(int bits, std::int64_t rounds) {
+  chains_for(bits);  // throws for a width this CPU or build hasn't
+#if defined(__x86_64__) || defined(__i386__)
+  if (bits == 512) return estimates512(rounds);
+  if (bits == 256) return estimates256(rounds);
+  return estimates128(rounds);
+#else
+  (void)rounds;
+  throw std::invalid_argument("rsqrt_estimates: no x86 estimate on this CPU");
+#endif
 }
 
 PairFloor pair_floor(std::string_view nbody_kernel_name) {

@@ -37,6 +37,15 @@ std::vector<int> fma_widths();
 // std::invalid_argument for a width not in fma_widths().
 double fma_flops(int bits, int threads, std::int64_t rounds);
 
+// Runs 12 independent chains of `bits`-wide float reciprocal square root
+// estimates (vrsqrt14ps at 512 bits, vrsqrtps below: what the n-body kernels
+// use) for `rounds` rounds on one thread and returns how many it ran. Timed
+// beside fma_flops(bits, 1, ...) / (2 x lanes), FMAs run, it gives the
+// estimate's issue rate in FMAs: how much of the FMA units one takes (a
+// 512-bit vrsqrt14ps is three micro-ops, two on the FMA port 0). Throws
+// std::invalid_argument for a width not in fma_widths(), or 128 without SSE.
+double rsqrt_estimates(int bits, std::int64_t rounds);
+
 // The floor that matches a set of n-body kernels (calder::nbody::kernel_name():
 // "avx512", "avx2+fma", "sse2", "generic"): the vector width they use and the
 // flops of one of their interactions in each precision.
