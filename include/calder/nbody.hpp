@@ -25,11 +25,12 @@
 //   - barnes_hut_accelerations / BarnesHut: O(n log n), approximate, on a
 //     quadtree.
 //
-// Determinism: each body's sum is computed by one thread, over its sources in
-// a fixed order, so results are bit-identical for any number of threads. They
-// differ in the last bits between kernel instruction sets (kernel_name()) and
-// from the reference (fused multiply-adds, reciprocal square root estimates
-// refined by Newton steps): these kernels are for physics, not for
+// Determinism: each body's sum runs over its sources in a fixed order that
+// does not depend on the thread count, so results are bit-identical for any
+// number of threads. They differ in the last bits between kernel instruction
+// sets (kernel_name()) and from the reference (fused multiply-adds, pairs
+// taken once for both bodies, reciprocal square root estimates refined by
+// Newton steps or a series): these kernels are for physics, not for
 // reproducing p5.js sketches bit for bit, which is the core's job.
 //
 // Bad input (arrays of different sizes, a non-finite position, a mass that is
