@@ -51,6 +51,20 @@
 #else
 #define CALDER_BULK_PASS CALDER_BULK_INLINE
 #endif
+// A pass's vector loop two vectors an iteration (each_vector): native
+// builds without AddressSanitizer. With ASan the unrolled loops took 3x as
+// long to compile (Clang, kernels_fast.cpp: 578 s against 174 s) and speed
+// is not their point; WebAssembly keeps one vector (V8: not measured).
+#if defined(__wasm__) || defined(__SANITIZE_ADDRESS__)
+#define CALDER_BULK_UNROLL
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define CALDER_BULK_UNROLL
+#endif
+#endif
+#ifndef CALDER_BULK_UNROLL
+#define CALDER_BULK_UNROLL _Pragma("GCC unroll 2")
+#endif
 
 namespace calder::bulk::detail {
 // Internal linkage: each kernel file has its own copies, built with its own
@@ -856,11 +870,12 @@ Passes<R> plan_passes(const Plan& plan, std::vector<std::size_t>& passes) {
 template <class R, class FirstLoad, class Body>
 [[gnu::always_inline]] inline void each_vector(Chunk<R>& chunk, std::size_t vectors, bool first,
                                                FirstLoad first_load, Body body) {
-  // Two vectors an iteration: their chains side by side (AVX2, at 10^5: book
-  // 1.02x, float64 1.03x, float32 1.08x; SSE2 book 1.08x; AVX-512 1x).
+  // Two vectors an iteration (CALDER_BULK_UNROLL): their chains side by side
+  // (AVX2, at 10^5: book 1.02x, float64 1.03x, float32 1.08x; SSE2 book
+  // 1.08x; AVX-512 1x).
   Numerators<R> seen = chunk.numerators;  // in registers through the loop
   if (first) {
-#pragma GCC unroll 2
+    CALDER_BULK_UNROLL
     for (std::size_t v = 0; v < vectors; ++v) {
       Block<R> b = first_load(v);
       b.numerators = seen;
@@ -868,7 +883,7 @@ template <class R, class FirstLoad, class Body>
       seen = b.numerators;
     }
   } else {
-#pragma GCC unroll 2
+    CALDER_BULK_UNROLL
     for (std::size_t v = 0; v < vectors; ++v) {
       Block<R> b = load_block(chunk, v, true);
       b.numerators = seen;
