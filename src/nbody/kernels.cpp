@@ -285,7 +285,8 @@ template <Law kLaw, bool kMasked, typename V, bool kViaFloat = false>
     if constexpr (kNewtonSteps<V> == 0) {
       w = m / (r2 * vsqrt(r2));
     } else if constexpr (kCubeFromEstimate<V>) {
-      w = (m * kCubeScale<V>)*cube_scaled(r2);
+      const V scaled_m = m * kCubeScale<V>;
+      w = scaled_m * cube_scaled(r2);
     } else {
       const V y = rsqrt_scaled(r2);  // 2 / r
       constexpr T k = T(1) / (kLastStepScale<V> * kLastStepScale<V> * kLastStepScale<V>);
@@ -562,12 +563,12 @@ struct PairPass {
 // pairs_between's weight of a pair, without the masses: Plummer's law with
 // an estimate gives cube_scaled (the masses carry kCubeScale), the other laws
 // weight() with unit mass.
-template <Law kLaw, bool kMasked, typename V, bool kViaFloat>
+template <Law kLaw, typename V, bool kViaFloat>
 constexpr bool kPairCube = kLaw == Law::plummer && !kViaFloat && kNewtonSteps<V> != 0;
 
 template <Law kLaw, bool kMasked, typename V, bool kViaFloat>
 [[gnu::always_inline]] inline V pair_weight(V dx, V dy, V eps2, V lo, V hi) {
-  if constexpr (kPairCube<kLaw, kMasked, V, kViaFloat>) {
+  if constexpr (kPairCube<kLaw, V, kViaFloat>) {
     V r2 = dx * dx + eps2;
     r2 = dy * dy + r2;
     const V w = cube_scaled(r2);
@@ -660,7 +661,7 @@ void pairs_between(const Bodies<typename Scalar<V>::type>& a,
   constexpr std::size_t L = kLanes<V>;
   // Plummer's law with an estimate: both sides' masses carry kCubeScale, one
   // product a pair fewer.
-  constexpr bool kCube = kPairCube<kLaw, kMasked, V, kViaFloat>;
+  constexpr bool kCube = kPairCube<kLaw, V, kViaFloat>;
   alignas(64) T sum_x[kFloatTile];
   alignas(64) T sum_y[kFloatTile];
   alignas(64) T mass[kFloatTile];
