@@ -894,6 +894,20 @@ template <class R, class FirstLoad, class Body>
   chunk.numerators = seen;
 }
 
+// A vector's accelerations, or its positions and velocities, back to the chunk.
+template <class R>
+[[gnu::always_inline]] inline void store_accelerations(Chunk<R>& to, const Block<R>& b) {
+  __builtin_memcpy(to.ax.values + b.at, &b.ax, sizeof b.ax);
+  __builtin_memcpy(to.ay.values + b.at, &b.ay, sizeof b.ay);
+}
+template <class R>
+[[gnu::always_inline]] inline void store_state(Chunk<R>& to, const Block<R>& b) {
+  __builtin_memcpy(to.x.values + b.at, &b.x, sizeof b.x);
+  __builtin_memcpy(to.y.values + b.at, &b.y, sizeof b.y);
+  __builtin_memcpy(to.vx.values + b.at, &b.vx, sizeof b.vx);
+  __builtin_memcpy(to.vy.values + b.at, &b.vy, sizeof b.vy);
+}
+
 // The last pass of a step: the fused gravity (`before`), the last op
 // (`force`) and the update, in one loop, or in two (kUpdatePass). The
 // functions are parameters, so local copies: else the stores below (memcpy:
@@ -903,30 +917,22 @@ template <class R, bool kBook, class FirstLoad, class Before, class Force, class
 [[gnu::always_inline]] inline void last_pass(Chunk<R>& to, std::size_t vectors, bool alone,
                                              FirstLoad first_load, Before before, Force force,
                                              Update update) {
-  using V = typename Simd<R>::V;
-  const auto store_state = [&to](const Block<R>& b) CALDER_BULK_INLINE {
-    __builtin_memcpy(to.x.values + b.at, &b.x, sizeof(V));
-    __builtin_memcpy(to.y.values + b.at, &b.y, sizeof(V));
-    __builtin_memcpy(to.vx.values + b.at, &b.vx, sizeof(V));
-    __builtin_memcpy(to.vy.values + b.at, &b.vy, sizeof(V));
-  };
   if constexpr (kUpdatePass<R, kBook>) {
     each_vector(to, vectors, alone, first_load, [&](Block<R>& b) CALDER_BULK_INLINE {
       before(b);
       force(b);
-      __builtin_memcpy(to.ax.values + b.at, &b.ax, sizeof(V));
-      __builtin_memcpy(to.ay.values + b.at, &b.ay, sizeof(V));
+      store_accelerations(to, b);
     });
     each_vector(to, vectors, false, first_load, [&](Block<R>& b) CALDER_BULK_INLINE {
       update(b);
-      store_state(b);
+      store_state(to, b);
     });
   } else {
     each_vector(to, vectors, alone, first_load, [&](Block<R>& b) CALDER_BULK_INLINE {
       before(b);
       force(b);
       update(b);
-      store_state(b);
+      store_state(to, b);
     });
   }
 }
@@ -975,8 +981,7 @@ void advance_step(const Plan& plan, Chunk<R>& chunk, std::size_t vectors,
       Chunk<R>& to = chunk;
       each_vector(to, vectors, q == 0, first_load, [&](Block<R>& b) CALDER_BULK_INLINE {
         op(b);
-        __builtin_memcpy(to.ax.values + b.at, &b.ax, sizeof(V));
-        __builtin_memcpy(to.ay.values + b.at, &b.ay, sizeof(V));
+        store_accelerations(to, b);
       });
     };
     apply_op<R, kBook>(each, plan.ops[k], plan.ops[k].template params<R>(), step, width, height,

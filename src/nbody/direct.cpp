@@ -177,15 +177,8 @@ void self_pairs(const Bodies<T>& own, std::size_t lanes, double* sum_x, double* 
     return;
   }
   const std::size_t half = vectors / 2 * lanes;
-  Bodies<T> lower = own;
-  lower.n = half;
-  Bodies<T> upper = own;
-  upper.x += half;
-  upper.y += half;
-  upper.m += half;
-  if (own.x_lo != nullptr) upper.x_lo += half;
-  if (own.y_lo != nullptr) upper.y_lo += half;
-  upper.n = own.n - half;
+  const Bodies<T> lower = own.slice(0, half);
+  const Bodies<T> upper = own.slice(half, own.n - half);
   pairs(lower, upper, sum_x, sum_y, sum_x + half, sum_y + half);
   self_pairs(lower, lanes, sum_x, sum_y, one_sided, pairs);
   self_pairs(upper, lanes, sum_x + half, sum_y + half, one_sided, pairs);
@@ -200,15 +193,7 @@ void sum_by_stripes(const Bodies<T>& bodies, std::size_t lanes, int threads, dou
   // bodies.n <= P kFloatTile).
   const auto first = [&](std::size_t k) { return k * vectors / stripes * lanes; };
   const auto stripe = [&](std::size_t k) {
-    Bodies<T> b;
-    const std::size_t from = first(k);
-    b.x = bodies.x + from;
-    b.y = bodies.y + from;
-    b.m = bodies.m + from;
-    b.x_lo = bodies.x_lo == nullptr ? nullptr : bodies.x_lo + from;
-    b.y_lo = bodies.y_lo == nullptr ? nullptr : bodies.y_lo + from;
-    b.n = first(k + 1) - from;
-    return b;
+    return bodies.slice(first(k), first(k + 1) - first(k));
   };
   const std::size_t players = stripes + stripes % 2;  // even: a bye when odd
   const auto diagonal = static_cast<std::ptrdiff_t>(stripes);
@@ -261,13 +246,7 @@ void direct_sums(Bodies<T> bodies, std::size_t n_pad, std::size_t lanes, std::si
 #endif
   for (std::ptrdiff_t b = 0; b < blocks; ++b) {
     const std::size_t i0 = static_cast<std::size_t>(b) * block;
-    Bodies<T> targets = bodies;
-    targets.x += i0;
-    targets.y += i0;
-    if (bodies.x_lo != nullptr) targets.x_lo += i0;
-    if (bodies.y_lo != nullptr) targets.y_lo += i0;
-    targets.n = std::min(block, n - i0);
-    one_sided(targets, bodies, sum_x + i0, sum_y + i0);
+    one_sided(bodies.slice(i0, std::min(block, n - i0)), bodies, sum_x + i0, sum_y + i0);
   }
   (void)threads;
 }

@@ -62,6 +62,18 @@ struct Bodies {
   // close pairs (Sterbenz) and the low parts supplying the bits float lost.
   const T* x_lo = nullptr;
   const T* y_lo = nullptr;
+
+  // Bodies [from, from + count) of these.
+  Bodies slice(std::size_t from, std::size_t count) const {
+    Bodies s = *this;
+    s.x += from;
+    s.y += from;
+    s.m += from;
+    if (x_lo != nullptr) s.x_lo += from;
+    if (y_lo != nullptr) s.y_lo += from;
+    s.n = count;
+    return s;
+  }
 };
 
 // Tree nodes as sources for the multipole kernels: centre of mass, mass and,
