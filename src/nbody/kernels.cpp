@@ -536,12 +536,15 @@ struct VectorOf<float> {
 // what bounds it). Each sum runs in a fixed order, in float for float32 and
 // added in double at the end, as run_blocks' tiles.
 //
-// U = kPairVectors: two vectors of b a pass where the registers hold them
-// (AVX-512's 32): a's loads and stores serve two, and two independent pair
-// chains overlap: 11 cycles for 16 float32 pairs instead of 12.7 (one
-// thread, a 512 x 512 stripe pair in L1).
+// U = kPairVectors: three vectors of b a pass where the registers hold them
+// (AVX-512's 32): a's loads and stores serve three, and three independent
+// pair chains overlap. Float32, one thread, N = 16,000 (bench_nbody Direct):
+// 11 cycles for 16 pairs with two instead of 12.7 with one, and three 1.03x
+// two; four 0.99x (float64 the same for two, three and four). A stripe's
+// last vectors take a pass of two, then of one. AVX2 measured no better
+// with two: it keeps one.
 #if defined(__AVX512F__)
-constexpr std::size_t kPairVectors = 2;
+constexpr std::size_t kPairVectors = 3;
 #else
 constexpr std::size_t kPairVectors = 1;
 #endif
@@ -673,6 +676,12 @@ void pairs_between(const Bodies<typename Scalar<V>::type>& a,
   std::size_t j0 = 0;
   for (; b.n - j0 >= kPairVectors * L; j0 += kPairVectors * L) {
     pairs_pass<V, kPairVectors, kLaw, kMasked, kSplit, kViaFloat>(pass, j0, b_x, b_y);
+  }
+  if constexpr (kPairVectors > 2) {
+    if (b.n - j0 >= 2 * L) {
+      pairs_pass<V, 2, kLaw, kMasked, kSplit, kViaFloat>(pass, j0, b_x, b_y);
+      j0 += 2 * L;
+    }
   }
   for (; j0 < b.n; j0 += L) pairs_pass<V, 1, kLaw, kMasked, kSplit, kViaFloat>(pass, j0, b_x, b_y);
   for (std::size_t i = 0; i < a.n; ++i) {
