@@ -229,38 +229,57 @@ template <typename V>
 
 // Plummer's r^-3 for r2 > 0, scaled: r^-3 = kCubeScale<V> cube_scaled(r2)
 // (the caller folds the constant into the masses).
-// float32 with AVX-512 takes it from the estimate alone: y = rsqrt14(r2) is
-// within 2^-14, so e = r2 y^2 - 1 is within 2^-13, and
+// With AVX-512 it comes from an estimate y of 1 / r and one correction:
+// e = r2 y^2 - 1 is small, and
 //   r^-3 = y^3 (1 + e)^(-3/2) = y^3 (1 - 1.5 e + 1.875 e^2 - ...)
 //        ~ S y^3 (A - r2 y^2),  S (A - 1) = 1, slope -S = -1.5:
 // four operations (y^2, y^3, one fnmadd, a product) where a Newton step and
-// the cube take five; the dropped 1.875 e^2 is below 2.8e-8 relative, under
-// float's rounding (a Newton step's cube leaves 1.125 e^2). A and S are the
-// floats nearest 5/3 and 3/2 with S (A - 1) = 1 - 2^-44: A = RN(5/3) - 1 ulp,
-// S = 1.5 + 3 ulps (RN(5/3) and 1.5 would bias every force by -6e-8).
-// Elsewhere: the Newton steps' 2 / r, cubed (S = 1/8). A zmm vrsqrt14ps is
-// three uops (two of them on port 0; it issues every 2 cycles), so each
-// operation saved around it counts.
+// the cube take five. float32: y = rsqrt14(r2) is within 2^-14, so e is
+// within 2^-13 and the dropped 1.875 e^2 below 2.8e-8 relative, under
+// float's rounding (a Newton step's cube leaves 1.125 e^2). float64: y is
+// rsqrt14 after one Newton step (within 1.5 2^-28, e within 2^-26.4), so
+// the dropped term is below 2^-51.9, two of double's ulps (two Newton steps
+// and the cube took nine operations, this takes seven). The Newton step
+// leaves out its factor 1/2 (y' = 2 y), so the float64 form is
+// y'^3 (4 A - r2 y'^2) = 32 y^3 (A - r2 y^2). A and S are the floats
+// nearest 5/3 and 3/2 with S (A - 1) = 1 to the type's precision: float
+// A = RN(5/3) - 1 ulp, S = 1.5 + 3 ulps (1 - 2^-44; RN(5/3) and 1.5 would
+// bias every force by -6e-8); double A = RN(5/3) + 1 ulp, S = 1.5 - 3 ulps
+// (1 + 2e-31). Elsewhere: the Newton steps' 2 / r, cubed (S = 1/8). A zmm
+// vrsqrt14ps is three uops (two of them on port 0; it issues every 2
+// cycles), so each operation saved around it counts.
 #if defined(__AVX512F__)
 template <typename V>
-constexpr bool kCubeFromEstimate = sizeof(typename Scalar<V>::type) == 4;
+constexpr bool kCubeFromEstimate = true;
 #else
 template <typename V>
 constexpr bool kCubeFromEstimate = false;
 #endif
 
 template <typename V>
-[[maybe_unused]] constexpr typename Scalar<V>::type kCubeScale =
-    kCubeFromEstimate<V>
-        ? 0x1.800006p+0f
-        : typename Scalar<V>::type(1) / (kLastStepScale<V> * kLastStepScale<V> * kLastStepScale<V>);
+[[maybe_unused]] constexpr typename Scalar<V>::type kCubeScale = [] {
+  using T = typename Scalar<V>::type;
+  if constexpr (!kCubeFromEstimate<V>) {
+    return T(1) / (kLastStepScale<V> * kLastStepScale<V> * kLastStepScale<V>);
+  } else if constexpr (sizeof(T) == 4) {
+    return 0x1.800006p+0f;
+  } else {
+    return 0x1.7fffffffffffdp-5;  // S / 32
+  }
+}();
 
 template <typename V>
 [[gnu::always_inline]] inline V cube_scaled(V r2) {
-  if constexpr (kCubeFromEstimate<V>) {
+  using T = typename Scalar<V>::type;
+  if constexpr (kCubeFromEstimate<V> && sizeof(T) == 4) {
     const V y = rsqrt_estimate(r2);
     const V y2 = y * y;
     return (y * y2) * (0x1.aaaaa8p+0f - r2 * y2);
+  } else if constexpr (kCubeFromEstimate<V>) {
+    const V y0 = rsqrt_estimate(r2);
+    const V y = y0 * (T(3) - r2 * (y0 * y0));  // 2 / r, one Newton step
+    const V y2 = y * y;
+    return (y * y2) * (0x1.aaaaaaaaaaaacp+2 - r2 * y2);  // 4 A
   } else {
     const V y = rsqrt_scaled(r2);  // 2 / r
     return y * (y * y);
