@@ -179,10 +179,10 @@ constexpr int kNewtonSteps = 0;
 // vsqrtpd + vdivpd (one of each per pair) bound the Plummer sum by the
 // divider, not the FMAs. kFloatEstimate: where set, the Plummer sum of
 // unmasked pairs (eps^2 > 0) takes float's estimate instead (vcvtpd2ps,
-// vrsqrtps, vcvtps2pd: relative error < 1.5 * 2^-12) and three Newton steps
-// (2^-23, 2^-45, then rounding), when every r^2 of the call is in float's
-// normal range (LawParams::float_range). Error against the exact sum:
-// tests/test_nbody.cpp and docs/PERFORMANCE.md (RMS ~1e-15).
+// vrsqrtps, vcvtps2pd: relative error < 1.5 * 2^-12), when every r^2 of the
+// call is in float's normal range (LawParams::float_range); see
+// cube_via_float. Error against the exact sum: tests/test_nbody.cpp and
+// docs/PERFORMANCE.md (RMS ~1e-15).
 #if defined(__AVX__) && !defined(__AVX512F__)
 constexpr bool kFloatEstimate = true;
 [[gnu::always_inline]] inline VD rsqrt_estimate_via_float(VD v) {
@@ -193,15 +193,21 @@ constexpr bool kFloatEstimate = false;
 // (unused: kFloatEstimate is false)
 [[maybe_unused, gnu::always_inline]] inline VD rsqrt_estimate_via_float(VD v) { return v; }
 #endif
-constexpr int kFloatEstimateSteps = 3;
 
-// 2 / sqrt(r2) from float's estimate (see kFloatEstimate): the last Newton
-// step leaves out its factor 1/2, like rsqrt_scaled.
-[[maybe_unused, gnu::always_inline]] inline VD rsqrt_scaled_via_float(VD r2) {
-  VD y = rsqrt_estimate_via_float(r2);
-  const VD half_r2 = r2 * 0.5;
-  for (int step = 1; step < kFloatEstimateSteps; ++step) y = y * (1.5 - half_r2 * (y * y));
-  return y * (3.0 - r2 * (y * y));
+// 8 r^-3 from float's estimate (see kFloatEstimate): one Newton step
+// without its factor 1/2 gives y = 2 / r within 3.4 2^-24 (2^-22.2), so
+// e = r2 y^2 / 4 - 1 is within 2^-21.2, and the series
+//   r^-3 = (y / 2)^3 (1 + e)^(-3/2) = (y / 2)^3 (1 - 1.5 e + 1.875 e^2 - ...)
+// to second order leaves 2.19 e^3, below 2^-62. In e4 = 4 e = r2 y^2 - 4 the
+// coefficients are exact: 1 - 0.375 e4 + 0.1171875 e4^2. Nine operations
+// where three Newton steps and the cube took twelve.
+[[maybe_unused, gnu::always_inline]] inline VD cube_via_float(VD r2) {
+  const VD y0 = rsqrt_estimate_via_float(r2);
+  const VD y = y0 * (3.0 - r2 * (y0 * y0));
+  const VD y2 = y * y;
+  const VD e4 = r2 * y2 - 4.0;
+  const VD series = (e4 * 0.1171875 - 0.375) * e4 + 1.0;
+  return (y * y2) * series;
 }
 
 // 1 / sqrt(r2) for r2 > 0, to the type's precision. With kNewtonSteps > 0 the
@@ -296,8 +302,7 @@ template <Law kLaw, bool kMasked, typename V, bool kViaFloat = false>
   if constexpr (kLaw == Law::plummer && kViaFloat) {
     V r2 = dx * dx + eps2;
     r2 = dy * dy + r2;
-    const V y = rsqrt_scaled_via_float(r2);  // 2 / r
-    w = (m * T(0.125)) * y * (y * y);
+    w = (m * T(0.125)) * cube_via_float(r2);
   } else if constexpr (kLaw == Law::plummer) {
     V r2 = dx * dx + eps2;
     r2 = dy * dy + r2;
