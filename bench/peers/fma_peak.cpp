@@ -93,9 +93,7 @@ template <typename V>
 CALDER_ESTIMATE_CHAINS(estimates512, "avx512f,avx2,fma", Float512, CALDER_RSQRT14_512)
 CALDER_ESTIMATE_CHAINS(estimates256, "avx2,fma", Float256, CALDER_RSQRT_256)
 CALDER_ESTIMATE_CHAINS(estimates128, "sse", Float128, CALDER_RSQRT_128)
-#endif
 
-#if defined(__x86_64__) || defined(__i386__)
 [[gnu::target("avx512f,avx2,fma")]] CALDER_WIDE_512 double chains512(std::int64_t rounds) {
   return chains<Float512>(rounds);
 }
