@@ -19,15 +19,19 @@
 //   EstimateRate/bits                 the reciprocal square root estimate's
 //                                     issue rate against the FMA's (vs_fma),
 //                                     one thread (peers/fma_peak.hpp)
-//   BarnesHut/N/precision/threads/theta100
+//   BarnesHut/N/precision/threads/theta100/leaf
 //                                     one evaluation at the default theta,
 //                                     calder::kDefaultTheta (and 0.47, 0.5 at
-//                                     N = 10^6; leaf 16, group 128) on a
+//                                     N = 10^6; leaf 16, and 24, 32 at 10^5
+//                                     and 10^6 on 2 threads; group 128) on a
 //                                     uniform disk, steps/s, the build's and
 //                                     the walk's ms a step, with the RMS and
 //                                     max relative error against the direct
 //                                     sum (on a sample of 256 bodies for
-//                                     N > 10^4)
+//                                     N > 10^4), weak_share (the part of the
+//                                     squared error from bodies of weak pull,
+//                                     below an eighth of the median) and
+//                                     abs_err (RMS |error| / median |a|)
 //   BarnesHutError/theta*100/clusters the error table at N = 10^4, threads 2
 //
 // Every rate is wall-clock (UseRealTime): threads count. The context block
@@ -184,6 +188,8 @@ void report_error(benchmark::State& state, const peers::ExactSample& e,
   const peers::ForceError error = peers::force_error(e, ax, ay);
   state.counters["rms_err"] = error.rms;
   state.counters["max_err"] = error.max;
+  state.counters["weak_share"] = error.weak_share;
+  state.counters["abs_err"] = error.abs_rms;
 }
 
 void BarnesHut(benchmark::State& state) {
@@ -192,6 +198,7 @@ void BarnesHut(benchmark::State& state) {
   nb::BarnesHutOptions o;
   static_cast<nb::Options&>(o) = options_for(state.range(1), state.range(2), 0);
   o.theta = static_cast<double>(state.range(3)) / 100.0;
+  o.leaf_size = static_cast<int>(state.range(4));
   const peers::ExactSample& e = exact(s, o, "disk" + std::to_string(n));
   nb::BarnesHut solver;
   std::vector<double> ax(n);
@@ -220,9 +227,10 @@ void BarnesHut(benchmark::State& state) {
 }
 constexpr auto kDefaultTheta100 = static_cast<std::int64_t>(calder::kDefaultTheta * 100.0 + 0.5);
 BENCHMARK(BarnesHut)
-    ->ArgNames({"N", "precision", "threads", "theta100"})
-    ->ArgsProduct({{10000, 100000, 1000000}, {64, 32}, {1, 2}, {kDefaultTheta100}})
-    ->ArgsProduct({{1000000}, {64, 32}, {1, 2}, {47, 50}})
+    ->ArgNames({"N", "precision", "threads", "theta100", "leaf"})
+    ->ArgsProduct({{10000, 100000, 1000000}, {64, 32}, {1, 2}, {kDefaultTheta100}, {16}})
+    ->ArgsProduct({{1000000}, {64, 32}, {1, 2}, {47, 50}, {16}})
+    ->ArgsProduct({{100000, 1000000}, {64, 32}, {2}, {kDefaultTheta100}, {24, 32}})
     ->UseRealTime()
     ->Unit(benchmark::kMillisecond);
 

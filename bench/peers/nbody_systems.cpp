@@ -3,8 +3,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <random>
 #include <thread>
+#include <vector>
 
 namespace calder::peers {
 
@@ -92,14 +94,29 @@ ExactSample exact_sample(const NBodySystem& s, const nbody::Options& options, st
 ForceError force_error(const ExactSample& e, std::span<const double> ax,
                        std::span<const double> ay) {
   ForceError error;
+  const std::size_t count = e.bodies.size();
+  if (count == 0) return error;
+  std::vector<double> pull(count);
+  for (std::size_t k = 0; k < count; ++k) pull[k] = std::hypot(e.ax[k], e.ay[k]);
+  std::vector<double> sorted = pull;
+  const auto middle = sorted.begin() + static_cast<std::ptrdiff_t>(count / 2);
+  std::nth_element(sorted.begin(), middle, sorted.end());
+  const double median = *middle;
   double sum = 0.0;
-  for (std::size_t k = 0; k < e.bodies.size(); ++k) {
+  double weak = 0.0;
+  double absolute = 0.0;
+  for (std::size_t k = 0; k < count; ++k) {
     const std::size_t i = e.bodies[k];
-    const double rel = std::hypot(ax[i] - e.ax[k], ay[i] - e.ay[k]) / std::hypot(e.ax[k], e.ay[k]);
+    const double miss = std::hypot(ax[i] - e.ax[k], ay[i] - e.ay[k]);
+    const double rel = miss / pull[k];
     sum += rel * rel;
+    if (pull[k] < 0.125 * median) weak += rel * rel;
+    absolute += miss * miss;
     error.max = std::max(error.max, rel);
   }
-  if (!e.bodies.empty()) error.rms = std::sqrt(sum / static_cast<double>(e.bodies.size()));
+  error.rms = std::sqrt(sum / static_cast<double>(count));
+  error.weak_share = sum > 0.0 ? weak / sum : 0.0;
+  error.abs_rms = std::sqrt(absolute / static_cast<double>(count)) / median;
   return error;
 }
 

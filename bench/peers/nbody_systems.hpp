@@ -43,10 +43,15 @@ struct ExactSample {
 ExactSample exact_sample(const NBodySystem& system, const nbody::Options& options,
                          std::size_t sample);
 
-// Relative error |a - exact| / |exact| over the sampled bodies.
+// Relative error |a - exact| / |exact| over the sampled bodies; and what
+// the RMS is made of: the bodies of weak pull (|exact| below an eighth of the
+// sample's median, e.g. near a disk's centre) divide an error of ordinary
+// size by a small one.
 struct ForceError {
   double rms = 0.0;
   double max = 0.0;
+  double weak_share = 0.0;  // of the squared relative errors' sum, the weak bodies' part
+  double abs_rms = 0.0;     // RMS of |a - exact| / the median |exact|
 };
 ForceError force_error(const ExactSample& exact, std::span<const double> ax,
                        std::span<const double> ay);
