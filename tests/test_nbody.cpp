@@ -586,8 +586,8 @@ TEST(NbodyBarnesHut, ErrorFallsWithThetaAndIsSmallAtOneHalf) {
 }
 
 // The default opening parameters against the exact sum, on the largest disk
-// CI affords (the error grows with N: RMS 9e-4 at 10^4 and 8.5e-4 at 10^5,
-// 1.3e-3 at 10^6, measured with 1000 sampled bodies; docs/PERFORMANCE.md).
+// CI affords (the error grows with N: RMS 4.7e-4 at 10^4, 5.0e-4 at 10^5,
+// 7.4e-4 at 10^6, measured with 1000 sampled bodies; calder/nbody.hpp).
 // Both precisions, every 25th body checked against the plain reference.
 TEST(NbodyBarnesHut, DefaultOptionsMeetTheAccuracyTarget) {
   constexpr std::size_t kBodies = 25000;

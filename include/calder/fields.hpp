@@ -210,7 +210,7 @@ enum class NBodyMethod {
 
 // Barnes-Hut's opening angle unless a field or calder::nbody's options say
 // otherwise: the largest of 0.5, 0.45, 0.4, ... whose RMS relative force error
-// on a uniform disk of 10^6 bodies is below 1e-3 (7.6e-4; 0.5 gives 1.3e-3:
+// on a uniform disk of 10^6 bodies is below 1e-3 (7.4e-4; 0.5 gives 1.2e-3:
 // docs/PERFORMANCE.md, "Barnes-Hut").
 inline constexpr double kDefaultTheta = 0.45;
 

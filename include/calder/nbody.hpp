@@ -112,10 +112,13 @@ struct BarnesHutOptions : Options {
   // delta being the distance from the node's centre of mass to its cell's
   // centre (Barnes' modified criterion: a node holding a target is always
   // opened). Smaller is more accurate and slower; 0 is the direct sum. In
-  // [0, 1]. RMS relative error at 0.5, measured (softening half the mean
-  // spacing): uniform disk 4e-4 (N = 2000), 9e-4 (10^4), 1.3e-3 (10^6);
-  // clumps 1.4e-4 (10^4). It falls as theta^4: the default, 0.45, brings the
-  // 10^6 disk to 7.6e-4, 0.4 to 4.5e-4.
+  // [0, 1]. RMS relative error at the default, 0.45, measured on uniform
+  // disks (softening half the mean spacing, 1000 bodies sampled): 2.4e-4
+  // (N = 2000), 4.7e-4 (10^4), 5.0e-4 (10^5), 7.4e-4 (10^6); at 0.5 3.8e-4,
+  // 1.0e-3, 8.9e-4, 1.2e-3; at 0.4 4.1e-4 (10^6). Clumps: 1.5e-4 at 0.5
+  // (10^4). It falls about as theta^4. The bodies of weak pull (near a
+  // disk's centre) carry most of it: the absolute error is about 4e-4 of the
+  // median pull everywhere (docs/PERFORMANCE.md, issue 9 part 7).
   double theta = kDefaultTheta;
   int leaf_size = 16;    // a node with at most this many bodies is not split
   int group_size = 128;  // bodies of a node with at most this many share one tree walk
