@@ -14,6 +14,9 @@ namespace {
 
 double uniform(std::mt19937_64& g) { return static_cast<double>(g() >> 11) * 0x1.0p-53; }
 
+// force_error's weak pull: below this fraction of the sample's median.
+constexpr double kWeakPull = 0.125;
+
 }  // namespace
 
 NBodySystem disk(std::size_t n, std::uint64_t seed) {
@@ -110,13 +113,14 @@ ForceError force_error(const ExactSample& e, std::span<const double> ax,
     const double miss = std::hypot(ax[i] - e.ax[k], ay[i] - e.ay[k]);
     const double rel = miss / pull[k];
     sum += rel * rel;
-    if (pull[k] < 0.125 * median) weak += rel * rel;
+    if (pull[k] < kWeakPull * median) weak += rel * rel;
     absolute += miss * miss;
     error.max = std::max(error.max, rel);
   }
   error.rms = std::sqrt(sum / static_cast<double>(count));
   error.weak_share = sum > 0.0 ? weak / sum : 0.0;
-  error.abs_rms = std::sqrt(absolute / static_cast<double>(count)) / median;
+  // (A sample whose median pull is zero has no scale: 0, not a NaN.)
+  error.abs_rms = median > 0.0 ? std::sqrt(absolute / static_cast<double>(count)) / median : 0.0;
   return error;
 }
 
