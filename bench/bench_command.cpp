@@ -65,10 +65,12 @@ struct Plan {
   // A row whose single call takes longer than min_time (Box2D's 10^6
   // circles) repeats one call at a time, for about this long in all.
   double slow_budget = 10.0;
-  std::int64_t fma_rounds = 4'000'000;               // ~10 ms a call
-  std::size_t learner_slice_pairs = 1'000'000;       // ~25 ms a call
-  double max_rms = 1e-3;                             // the Barnes-Hut accuracy target
-  std::vector<double> finer_thetas{0.4, 0.35, 0.3};  // below calder::kDefaultTheta
+  std::int64_t fma_rounds = 4'000'000;          // ~10 ms a call
+  std::size_t learner_slice_pairs = 1'000'000;  // ~25 ms a call
+  double max_rms = 1e-3;                        // the Barnes-Hut accuracy target
+  // Below calder::kDefaultTheta in steps of 0.05.
+  std::vector<double> finer_thetas{calder::kDefaultTheta - 0.05, calder::kDefaultTheta - 0.1,
+                                   calder::kDefaultTheta - 0.15};
 };
 
 Plan quick_plan() {
@@ -684,10 +686,11 @@ Section barnes_hut_section(const Plan& plan, Runner& runner, Results& results) {
         thetas.push_back(probe.theta);
         theta_note = "theta " + printf_text("%.2g", probe.theta) + " at N = " + count_text(n) +
                      ": the largest of the default (" + printf_text("%.2g", calder::kDefaultTheta) +
-                     "), 0.4, 0.35, ... whose RMS error there is below " +
-                     error_text(plan.max_rms) +
+                     "), " + printf_text("%.2g", plan.finer_thetas[0]) + ", " +
+                     printf_text("%.2g", plan.finer_thetas[1]) +
+                     ", ... whose RMS error there is below " + error_text(plan.max_rms) +
                      " (the default is not: the error is the truncation of the multipole "
-                     "expansion and falls as theta^4, table below).";
+                     "expansion and falls about as theta^5, table below).";
       }
     }
 
@@ -757,9 +760,11 @@ Section barnes_hut_section(const Plan& plan, Runner& runner, Results& results) {
   section.tables.push_back(std::move(thetas));
 
   section.notes = {
-      "One step is one evaluation of all N accelerations (tree build and walk; leaf 16, group "
-      "128, multipoles to third order, the far nodes' field interpolated over each group) on the "
-      "uniform disk of the direct rows, Plummer softening " +
+      "One step is one evaluation of all N accelerations (tree build and walk; leaf " +
+          std::to_string(nb::BarnesHutOptions{}.leaf_size) + ", group " +
+          std::to_string(nb::BarnesHutOptions{}.group_size) +
+          ", multipoles to fourth order, the far nodes' field interpolated over each group) on "
+          "the uniform disk of the direct rows, Plummer softening " +
           printf_text("%.2g", peers::kDiskSoftening) + ".",
       "tree build: its share of a step (bounding box, Morton sort, tree, moments; the rest is "
       "the walk). From 2,000 bodies every part of it runs on the threads too: the Morton "

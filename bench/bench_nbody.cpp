@@ -21,9 +21,10 @@
 //                                     one thread (peers/fma_peak.hpp)
 //   BarnesHut/N/precision/threads/theta100/leaf
 //                                     one evaluation at the default theta,
-//                                     calder::kDefaultTheta (and 0.47, 0.5 at
-//                                     N = 10^6; leaf 16, and 24, 32 at 10^5
-//                                     and 10^6 on 2 threads; group 128) on a
+//                                     calder::kDefaultTheta (and 0.05 either
+//                                     side at N = 10^6; the default leaf, and
+//                                     16, 24 at 10^5 and 10^6 on 2 threads;
+//                                     group 128) on a
 //                                     uniform disk, steps/s, the build's and
 //                                     the walk's ms a step, with the RMS and
 //                                     max relative error against the direct
@@ -226,11 +227,13 @@ void BarnesHut(benchmark::State& state) {
   report_error(state, e, ax, ay);
 }
 constexpr auto kDefaultTheta100 = static_cast<std::int64_t>(calder::kDefaultTheta * 100.0 + 0.5);
+constexpr std::int64_t kDefaultLeaf = nb::BarnesHutOptions{}.leaf_size;
 BENCHMARK(BarnesHut)
     ->ArgNames({"N", "precision", "threads", "theta100", "leaf"})
-    ->ArgsProduct({{10000, 100000, 1000000}, {64, 32}, {1, 2}, {kDefaultTheta100}, {16}})
-    ->ArgsProduct({{1000000}, {64, 32}, {1, 2}, {47, 50}, {16}})
-    ->ArgsProduct({{100000, 1000000}, {64, 32}, {2}, {kDefaultTheta100}, {24, 32}})
+    ->ArgsProduct({{10000, 100000, 1000000}, {64, 32}, {1, 2}, {kDefaultTheta100}, {kDefaultLeaf}})
+    ->ArgsProduct(
+        {{1000000}, {64, 32}, {1, 2}, {kDefaultTheta100 - 5, kDefaultTheta100 + 5}, {kDefaultLeaf}})
+    ->ArgsProduct({{100000, 1000000}, {64, 32}, {2}, {kDefaultTheta100}, {16, 24}})
     ->UseRealTime()
     ->Unit(benchmark::kMillisecond);
 

@@ -209,10 +209,11 @@ enum class NBodyMethod {
 };
 
 // Barnes-Hut's opening angle unless a field or calder::nbody's options say
-// otherwise: the largest of 0.5, 0.45, 0.4, ... whose RMS relative force error
-// on a uniform disk of 10^6 bodies is below 1e-3 (7.4e-4; 0.5 gives 1.2e-3:
-// docs/PERFORMANCE.md, "Barnes-Hut").
-inline constexpr double kDefaultTheta = 0.45;
+// otherwise: the largest of 0.8, 0.75, 0.7, ... whose RMS relative force error
+// on a uniform disk of 10^6 bodies is clearly below 1e-3 with multipoles to
+// fourth order (6.4e-4; 0.75 gives 1.0e-3: docs/PERFORMANCE.md, "Barnes-Hut").
+// The clamped laws, summed with monopoles, err more (calder/nbody.hpp).
+inline constexpr double kDefaultTheta = 0.7;
 
 // Every body attracts every other (the n-body problem). In a world updated
 // simultaneously all forces come from one state (see PairOrder). In a world

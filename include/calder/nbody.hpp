@@ -112,15 +112,17 @@ struct BarnesHutOptions : Options {
   // delta being the distance from the node's centre of mass to its cell's
   // centre (Barnes' modified criterion: a node holding a target is always
   // opened). Smaller is more accurate and slower; 0 is the direct sum. In
-  // [0, 1]. RMS relative error at the default, 0.45, measured on uniform
-  // disks (softening half the mean spacing, 1000 bodies sampled): 2.4e-4
-  // (N = 2000), 4.7e-4 (10^4), 5.0e-4 (10^5), 7.4e-4 (10^6); at 0.5 3.8e-4,
-  // 1.0e-3, 8.9e-4, 1.2e-3; at 0.4 4.1e-4 (10^6). Clumps: 1.5e-4 at 0.5
-  // (10^4). It falls about as theta^4. The bodies of weak pull (near a
-  // disk's centre) carry most of it: the absolute error is about 4e-4 of the
-  // median pull everywhere (docs/PERFORMANCE.md, issue 9 part 7).
+  // [0, 1]. RMS relative error at the default, 0.7, measured on uniform
+  // disks (softening half the mean spacing, 1000 bodies sampled): 5.5e-4
+  // (N = 2000), 6.6e-4 (10^4), 6.6e-4 (10^5), 6.4e-4 (10^6), 8.5e-4
+  // (2 x 10^6); at 0.75 7.1e-4, 7.9e-4, 1.0e-3 (10^4 to 10^6); at 0.6
+  // 1.8e-4, 1.1e-4, 1.8e-4. Clumps: 1.1e-4 at 0.7 (10^4). With multipoles
+  // to fourth order it falls about as theta^5. The bodies of weak pull (near
+  // a disk's centre) carry most of it (docs/PERFORMANCE.md, issue 9 part 7).
+  // The clamped laws sum monopoles only: their error at 0.7 is about 1e-2
+  // (4e-3 at 0.45, 2e-3 at 0.3; N = 20,000 disk).
   double theta = kDefaultTheta;
-  int leaf_size = 16;    // a node with at most this many bodies is not split
+  int leaf_size = 32;    // a node with at most this many bodies is not split
   int group_size = 128;  // bodies of a node with at most this many share one tree walk
 };
 
@@ -143,13 +145,13 @@ struct BarnesHutStats {
 // index order: one order, whatever the number of threads that split the
 // work); a quadtree of the sorted order, each node the smallest cell holding
 // its bodies, split until it has at most leaf_size bodies (or all share one
-// code: coincident bodies); per node mass, centre of mass and second and
-// third moments. Walk: for each group of <= group_size bodies (groups that
+// code: coincident bodies); per node mass, centre of mass and second to
+// fourth moments. Walk: for each group of <= group_size bodies (groups that
 // share a parent walk the tree once, together), the accepted nodes and the
 // bodies of opened leaves; the kernels sum the nodes' multipole expansions to
-// third order (Plummer law; monopoles for the clamped laws, which are not
+// fourth order (Plummer law; monopoles for the clamped laws, which are not
 // harmonic) and the bodies' direct pulls for the whole group, float32 lists
-// relative to the group's centre. Nodes far from a group (beyond 1.8 / theta
+// relative to the group's centre. Nodes far from a group (beyond 2.8 / theta
 // of its half sides) are summed at 4 x 4 points of its square and
 // interpolated: an error below the expansion's at any theta. Groups are
 // handed to threads dynamically; each body's sum is still computed by one

@@ -303,7 +303,7 @@ class MutualAttraction(_Field):
     threads: int
     def __init__(self, *, law: AttractionLaw = ..., order: PairOrder = ...,
                  central: Optional[CentralBody] = None, method: NBodyMethod = ...,
-                 theta: float = 0.45, single_precision: bool = False, threads: int = 0,
+                 theta: float = 0.7, single_precision: bool = False, threads: int = 0,
                  enabled: bool = True) -> None: ...
     def copy(self) -> MutualAttraction: ...
 

@@ -4,7 +4,7 @@
 // top digits until the ranges fit in cache, then sort ranges on their own;
 // the order is unique, so the same for any thread count); the tree,
 // depth first, each node the smallest quadtree cell holding its bodies; mass,
-// centre of mass and second and third moments bottom up (parallel axis
+// centre of mass and second to fourth moments bottom up (parallel axis
 // theorem). The top of the tree is split serially down to about kSubtrees
 // subtrees, which threads build on their own and which are then appended in
 // a fixed order: the same tree for any number of threads.
@@ -533,6 +533,11 @@ void BarnesHut::Workspace::leaf_moments(bh::Node& node, bh::Moments& mo) const {
     mo.oxxy += m * dx * dx * dy;
     mo.oxyy += m * dx * dy * dy;
     mo.oyyy += m * dy * dy * dy;
+    mo.hxxxx += m * dx * dx * dx * dx;
+    mo.hxxxy += m * dx * dx * dx * dy;
+    mo.hxxyy += m * dx * dx * dy * dy;
+    mo.hxyyy += m * dx * dy * dy * dy;
+    mo.hyyyy += m * dy * dy * dy * dy;
   }
   mo.mass = mass;
   node.mx = mx;
@@ -566,6 +571,17 @@ void BarnesHut::Workspace::merge_moments(const bh::Tree& t, bh::Node& node, bh::
     mo.oxxy += m.oxxy + 2.0 * dx * m.qxy + dy * m.qxx + m.mass * dx * dx * dy;
     mo.oxyy += m.oxyy + 2.0 * dy * m.qxy + dx * m.qyy + m.mass * dx * dy * dy;
     mo.oyyy += m.oyyy + 3.0 * dy * m.qyy + m.mass * dy * dy * dy;
+    const double xx = dx * dx;
+    const double xy = dx * dy;
+    const double yy = dy * dy;
+    mo.hxxxx += m.hxxxx + 4.0 * dx * m.oxxx + 6.0 * xx * m.qxx + m.mass * xx * xx;
+    mo.hxxxy += m.hxxxy + 3.0 * dx * m.oxxy + dy * m.oxxx + 3.0 * (xx * m.qxy + xy * m.qxx) +
+                m.mass * xx * xy;
+    mo.hxxyy += m.hxxyy + 2.0 * (dx * m.oxyy + dy * m.oxxy) + xx * m.qyy + 4.0 * xy * m.qxy +
+                yy * m.qxx + m.mass * xx * yy;
+    mo.hxyyy += m.hxyyy + 3.0 * dy * m.oxyy + dx * m.oyyy + 3.0 * (yy * m.qxy + xy * m.qyy) +
+                m.mass * xy * yy;
+    mo.hyyyy += m.hyyyy + 4.0 * dy * m.oyyy + 6.0 * yy * m.qyy + m.mass * yy * yy;
   }
   mo.mass = mass;
   node.mx = mx;

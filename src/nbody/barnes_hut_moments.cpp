@@ -19,6 +19,7 @@ struct MomentScales {
   double mass = 1.0;
   double second = 1.0;  // length^2 mass
   double third = 1.0;   // length^3 mass
+  double fourth = 1.0;  // length^4 mass
 };
 
 template <typename T>
@@ -34,6 +35,15 @@ void write_moments(const bh::Moments& m, const MomentScales& s, T* o) {
   o[8] = static_cast<T>(7.5 * m.oyyy * s.third);
   o[9] = static_cast<T>(1.5 * (m.oxxx + m.oxyy) * s.third);
   o[10] = static_cast<T>(1.5 * (m.oxxy + m.oyyy) * s.third);
+  o[11] = static_cast<T>(17.5 * m.hxxxx * s.fourth);
+  o[12] = static_cast<T>(17.5 * m.hxxxy * s.fourth);
+  o[13] = static_cast<T>(17.5 * m.hxxyy * s.fourth);
+  o[14] = static_cast<T>(17.5 * m.hxyyy * s.fourth);
+  o[15] = static_cast<T>(17.5 * m.hyyyy * s.fourth);
+  o[16] = static_cast<T>(7.5 * (m.hxxxx + m.hxxyy) * s.fourth);
+  o[17] = static_cast<T>(7.5 * (m.hxxxy + m.hxyyy) * s.fourth);
+  o[18] = static_cast<T>(7.5 * (m.hxxyy + m.hyyyy) * s.fourth);
+  o[19] = static_cast<T>(1.875 * (m.hxxxx + 2.0 * m.hxxyy + m.hyyyy) * s.fourth);
 }
 
 template <typename T>
@@ -59,7 +69,9 @@ void BarnesHut::Workspace::prepare_kernel_inputs(const detail::FloatFrame& frame
     return;
   }
   const double second = frame.scale * frame.scale * frame.mass_scale;
-  write_all_moments(tree.moments, MomentScales{frame.mass_scale, second, second * frame.scale},
+  write_all_moments(tree.moments,
+                    MomentScales{frame.mass_scale, second, second * frame.scale,
+                                 second * frame.scale * frame.scale},
                     node32, team);
   const std::size_t n = sm.size();
   sm32.resize(n);

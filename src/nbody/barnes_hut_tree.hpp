@@ -33,8 +33,8 @@ inline constexpr int kRadixDigits = 2 * kBits / kRadixBits;
 // team.
 inline constexpr std::size_t kSortInCache = 32768;
 // Per node, as the multipole kernels read them (kernels.hpp): m, 3 Q (3),
-// 1.5 tr Q, 7.5 O (4), 1.5 P (2).
-inline constexpr std::size_t kMoments = 11;
+// 1.5 tr Q, 7.5 O (4), 1.5 P (2), 17.5 H (5), 7.5 tr H (3), 1.875 tr tr H.
+inline constexpr std::size_t kMoments = 20;
 // From this many bodies every step (sort, tree, moments, walk) uses threads;
 // below, waking them costs more than they save.
 inline constexpr std::size_t kParallelFrom = 2000;
@@ -53,8 +53,9 @@ struct Node {
   std::uint32_t children = 0;  // 0: a leaf
 };
 
-// What the build needs besides: mass, second and third moments about the
-// centre of mass (qxx = sum m sx^2, ..., oxxy = sum m sx^2 sy, ...).
+// What the build needs besides: mass, second, third and fourth moments about
+// the centre of mass (qxx = sum m sx^2, ..., oxxy = sum m sx^2 sy, ...,
+// hxxxy = sum m sx^3 sy, ...).
 struct Moments {
   double mass = 0.0;
   double qxx = 0.0;
@@ -64,6 +65,11 @@ struct Moments {
   double oxxy = 0.0;
   double oxyy = 0.0;
   double oyyy = 0.0;
+  double hxxxx = 0.0;
+  double hxxxy = 0.0;
+  double hxxyy = 0.0;
+  double hxyyy = 0.0;
+  double hyyyy = 0.0;
 };
 
 // Columns of equal length that grow together (the interaction lists).

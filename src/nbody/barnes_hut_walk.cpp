@@ -33,16 +33,16 @@ namespace {
 // are summed at kStencil x kStencil points and interpolated (sum_far). The
 // interpolation's error falls with that distance as the multipole
 // expansion's falls with theta, so it stays below it at every theta (none at
-// theta 0, the direct sum): at the default, 0.45, the ratio is 4 half sides,
-// where it adds no measurable error (N = 10^6 disk: RMS 7.64e-4 with and
-// without); a fixed 4 set an error floor, 1.4e-4 at theta 0.2 (N = 10^4 disk,
-// 2.3e-5 without the far field).
+// theta 0, the direct sum): at the default, 0.7, the ratio is 4 half sides,
+// where it adds little (N = 10^6 disk: RMS 6.4e-4; 1.25e-3 at 2.8 half
+// sides, with nodes to fourth order: the nearer the far field, the more its
+// interpolation's error shows).
 constexpr std::size_t kStencil = 4;
-constexpr double kFarRatio = 1.8;
+constexpr double kFarRatio = 2.8;
 // A unit's far list (walk_unit): its square is about twice a group's, and
-// beyond kUnitFarRatio / theta of its half sides (6 at theta 0.45) its
+// beyond kUnitFarRatio / theta of its half sides (6 at theta 0.7) its
 // interpolation adds less error than the groups'.
-constexpr double kUnitFarRatio = 2.7;
+constexpr double kUnitFarRatio = 4.2;
 // Groups of at most this many bodies sum every node at each target (the
 // stencil would cost about as much).
 constexpr std::size_t kFarMinTargets = 32;

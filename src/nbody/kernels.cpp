@@ -434,11 +434,27 @@ struct MultipoleSources {
     const V vx = o_xxx * xx + (o_xxy * xy2 + o_xyy * yy);  // 7.5 O(d,d,.)
     const V vy = o_xxy * xx + (o_xyy * xy2 + o_yyy * yy);
     const V w = dx * vx + dy * vy;  // 7.5 O(d,d,d)
-    const V c = m * y3 - t15 * y5 + y7 * (T(2.5) * (dqd + pd) - (T(7.0 / 3.0) * y2) * w);
+    // Fourth order: 17.5 H(d,d,d,.), 7.5 tr H d, 1.875 tr tr H.
+    const V& h_xxxx = n.c[13];
+    const V& h_xxxy = n.c[14];
+    const V& h_xxyy = n.c[15];
+    const V& h_xyyy = n.c[16];
+    const V& h_yyyy = n.c[17];
+    const V gxx = h_xxxx * xx + (h_xxxy * xy2 + h_xxyy * yy);  // 17.5 H(d,d,.,.)
+    const V gxy = h_xxxy * xx + (h_xxyy * xy2 + h_xyyy * yy);
+    const V gyy = h_xxyy * xx + (h_xyyy * xy2 + h_yyyy * yy);
+    const V hx = gxx * dx + gxy * dy;  // 17.5 H(d,d,d,.)
+    const V hy = gxy * dx + gyy * dy;
+    const V w4 = dx * hx + dy * hy;            // 17.5 H(d,d,d,d)
+    const V tx = n.c[18] * dx + n.c[19] * dy;  // 7.5 tr H d
+    const V ty = n.c[19] * dx + n.c[20] * dy;
+    const V s2 = dx * tx + dy * ty;  // 7.5 d.tr H d
+    const V even4 = y2 * (T(2.25) * y2 * w4 - T(3.5) * s2) + n.c[21];
+    const V c = m * y3 - t15 * y5 + y7 * (T(2.5) * (dqd + pd) + even4 - (T(7.0 / 3.0) * y2) * w);
     ax = c * dx + ax;
     ay = c * dy + ay;
-    ax = y7 * vx - y5 * qx + ax;
-    ay = y7 * vy - y5 * qy + ay;
+    ax = y7 * (vx + tx - y2 * hx) - y5 * qx + ax;
+    ay = y7 * (vy + ty - y2 * hy) - y5 * qy + ay;
   }
 };
 

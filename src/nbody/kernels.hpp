@@ -82,10 +82,14 @@ struct Bodies {
 //   t15 = 1.5 tr Q
 //   o_xxx, o_xxy, o_xyy, o_yyy = 7.5 O,  O = sum m s s s  (third moments)
 //   p_x, p_y = 1.5 P,  P = sum m s |s|^2
+//   h_xxxx, ..., h_yyyy = 17.5 H,  H = sum m s s s s        (fourth moments)
+//   g_xx, g_xy, g_yy = 7.5 G,  G = sum m s s^T |s|^2  (H's trace)
+//   tt = 1.875 tr G
 template <typename T>
 struct Nodes {
-  static constexpr std::size_t kColumns = 13;
-  // x, y, m, q3xx, q3xy, q3yy, t15, o_xxx, o_xxy, o_xyy, o_yyy, p_x, p_y
+  static constexpr std::size_t kColumns = 22;
+  // x, y, m, q3xx, q3xy, q3yy, t15, o_xxx, o_xxy, o_xyy, o_yyy, p_x, p_y,
+  // h_xxxx, h_xxxy, h_xxyy, h_xyyy, h_yyyy, g_xx, g_xy, g_yy, tt
   const T* column[kColumns] = {};
   std::size_t n = 0;
 };
@@ -103,11 +107,17 @@ using Accumulate32 = void (*)(const float* tx, const float* ty, const float* tx_
                               const LawParams& law, double* out_x, double* out_y);
 
 // The multipole expansion of each node's Plummer-softened field (always
-// Law::plummer) to third order, with d = node - target, R^2 = |d|^2 + eps^2:
+// Law::plummer) to fourth order, with d = node - target, R^2 = |d|^2 + eps^2:
 //     m d/R^3                                                    (monopole)
 //   - 3 Q d/R^5 + (15/2)(d.Q d) d/R^7 - (3/2) tr(Q) d/R^5      (quadrupole)
 //   + (15/2) O(d,d,.)/R^7 - (35/2) O(d,d,d) d/R^9
 //   - (3/2) P/R^5 + (15/2)(P.d) d/R^7                           (octupole)
+//   - (35/2) H(d,d,d,.)/R^9 + (315/8) H(d,d,d,d) d/R^11
+//   + (15/2) G d/R^7 - (105/4)(d.G d) d/R^9 + (15/8) tr(G) d/R^7
+//                                                          (hexadecapole)
+// (the terms of -(1/k!) M_k . grad^(k+1) of 1/R, M_k the k-th moments; a
+// cell of evenly spread bodies has a small octupole but not a small
+// hexadecapole, so the fourth order is what lets theta grow).
 using AccumulateMultipole64 = void (*)(const double* tx, const double* ty, std::size_t nt,
                                        const Nodes<double>& nodes, const LawParams& law,
                                        double* out_x, double* out_y);
