@@ -676,6 +676,24 @@ TEST(NbodyBarnesHut, ResultsAreBitIdenticalForAnyThreadCount) {
   }
 }
 
+// The sums go back to the caller's order added to what the arrays hold, each
+// body once, whatever the team (threads split ax from ay: 2 and 3 threads).
+TEST(NbodyBarnesHut, AddsToTheAccelerationsGivenForAnyThreadCount) {
+  const System s = disk(3000, 23);
+  for (const int threads : {1, 2, 3}) {
+    nb::BarnesHutOptions b;
+    static_cast<nb::Options&>(b) = plummer(kSoftening);
+    b.threads = threads;
+    const Field a = barnes_hut(s, b);
+    Field c{std::vector<double>(s.size(), 1.0), std::vector<double>(s.size(), -2.0)};
+    nb::barnes_hut_accelerations(s.x, s.y, s.m, c.ax, c.ay, b);
+    for (std::size_t i = 0; i < s.size(); ++i) {
+      ASSERT_EQ(c.ax[i], 1.0 + a.ax[i]) << "threads " << threads << ", body " << i;
+      ASSERT_EQ(c.ay[i], -2.0 + a.ay[i]) << "threads " << threads << ", body " << i;
+    }
+  }
+}
+
 TEST(NbodyBarnesHut, LargeTreesAreBuiltInParallelPartsDeterministically) {
   // The tree's top is built first and about 64 subtrees below it in parallel
   // (threads from 2000 bodies; ResultsAreBitIdenticalForAnyThreadCount checks
