@@ -34,9 +34,9 @@ namespace {
 // interpolation's error falls with that distance as the multipole
 // expansion's falls with theta, so it stays below it at every theta (none at
 // theta 0, the direct sum): at the default, 0.7, the ratio is 4 half sides,
-// where it adds little (N = 10^6 disk: RMS 6.4e-4; 1.25e-3 at 2.8 half
-// sides, with nodes to fourth order: the nearer the far field, the more its
-// interpolation's error shows).
+// where it adds little (N = 10^6 disk: RMS 6.4e-4; with a ratio of 1.8 /
+// theta, 2.6 half sides there, 2.6e-3: with nodes to fourth order the
+// interpolation's error shows first when the far field comes nearer).
 constexpr std::size_t kStencil = 4;
 constexpr double kFarRatio = 2.8;
 // A unit's far list (walk_unit): its square is about twice a group's, and
