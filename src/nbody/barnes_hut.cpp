@@ -53,7 +53,7 @@ void check_options(const char* where, std::size_t n, const BarnesHutOptions& opt
 // where one thread takes 0.3 ms).
 void scatter(const std::vector<std::uint32_t>& order, const std::vector<double>& sum_x,
              const std::vector<double>& sum_y, double factor, std::span<double> ax,
-             std::span<double> ay, int team) {
+             std::span<double> ay, [[maybe_unused]] int team) {
   const auto n = static_cast<std::int64_t>(order.size());
   const auto add = [&](const std::vector<double>& sum, std::span<double> out, std::int64_t lo,
                        std::int64_t hi) {
@@ -61,32 +61,27 @@ void scatter(const std::vector<std::uint32_t>& order, const std::vector<double>&
       out[order[u]] += factor * sum[u];
     }
   };
-  if (team < 2) {
-    add(sum_x, ax, 0, n);
-    add(sum_y, ay, 0, n);
-    return;
-  }
-#if defined(_OPENMP)
-#pragma omp parallel num_threads(team)
-  {
-    const int threads = omp_get_num_threads();
-    const int t = omp_get_thread_num();
-#else
-  {
-    const int threads = 1;
-    const int t = 0;
-#endif
+  // Thread t of `threads`: its slice of ax or of ay (one thread: both).
+  const auto share = [&](int threads, int t) {
     const int half = threads / 2;
-    if (half == 0) {  // the runtime gave one thread
+    if (half == 0) {
       add(sum_x, ax, 0, n);
       add(sum_y, ay, 0, n);
-    } else {
-      const bool x = t < half;
-      const int k = x ? t : t - half;
-      const int slices = x ? half : threads - half;
-      add(x ? sum_x : sum_y, x ? ax : ay, n * k / slices, n * (k + 1) / slices);
+      return;
     }
+    const bool x = t < half;
+    const int k = x ? t : t - half;
+    const int slices = x ? half : threads - half;
+    add(x ? sum_x : sum_y, x ? ax : ay, n * k / slices, n * (k + 1) / slices);
+  };
+#if defined(_OPENMP)
+  if (team > 1) {
+#pragma omp parallel num_threads(team)
+    share(omp_get_num_threads(), omp_get_thread_num());
+    return;
   }
+#endif
+  share(1, 0);
 }
 
 }  // namespace
