@@ -19,12 +19,14 @@
 //   EstimateRate/bits                 the reciprocal square root estimate's
 //                                     issue rate against the FMA's (vs_fma),
 //                                     one thread (peers/fma_peak.hpp)
-//   BarnesHut/N/precision/threads/theta100/leaf
+//   BarnesHut/N/precision/threads/theta100/leaf/block
 //                                     one evaluation at the default theta,
 //                                     calder::kDefaultTheta (and 0.05 either
 //                                     side at N = 10^6; the default leaf, and
 //                                     16, 24 at 10^5 and 10^6 on 2 threads;
-//                                     group 128) on a
+//                                     group 128; block: target_block, -1 the
+//                                     kernels' choice, and 0 and 16 at 10^5
+//                                     and 10^6, float64, 2 threads) on a
 //                                     uniform disk, steps/s, the build's and
 //                                     the walk's ms a step, with the RMS and
 //                                     max relative error against the direct
@@ -200,6 +202,7 @@ void BarnesHut(benchmark::State& state) {
   static_cast<nb::Options&>(o) = options_for(state.range(1), state.range(2), 0);
   o.theta = static_cast<double>(state.range(3)) / 100.0;
   o.leaf_size = static_cast<int>(state.range(4));
+  o.target_block = static_cast<int>(state.range(5));
   const peers::ExactSample& e = exact(s, o, "disk" + std::to_string(n));
   nb::BarnesHut solver;
   std::vector<double> ax(n);
@@ -229,11 +232,17 @@ void BarnesHut(benchmark::State& state) {
 constexpr auto kDefaultTheta100 = static_cast<std::int64_t>(calder::kDefaultTheta * 100.0 + 0.5);
 constexpr std::int64_t kDefaultLeaf = nb::BarnesHutOptions{}.leaf_size;
 BENCHMARK(BarnesHut)
-    ->ArgNames({"N", "precision", "threads", "theta100", "leaf"})
-    ->ArgsProduct({{10000, 100000, 1000000}, {64, 32}, {1, 2}, {kDefaultTheta100}, {kDefaultLeaf}})
+    ->ArgNames({"N", "precision", "threads", "theta100", "leaf", "block"})
     ->ArgsProduct(
-        {{1000000}, {64, 32}, {1, 2}, {kDefaultTheta100 - 5, kDefaultTheta100 + 5}, {kDefaultLeaf}})
-    ->ArgsProduct({{100000, 1000000}, {64, 32}, {2}, {kDefaultTheta100}, {16, 24}})
+        {{10000, 100000, 1000000}, {64, 32}, {1, 2}, {kDefaultTheta100}, {kDefaultLeaf}, {-1}})
+    ->ArgsProduct({{1000000},
+                   {64, 32},
+                   {1, 2},
+                   {kDefaultTheta100 - 5, kDefaultTheta100 + 5},
+                   {kDefaultLeaf},
+                   {-1}})
+    ->ArgsProduct({{100000, 1000000}, {64, 32}, {2}, {kDefaultTheta100}, {16, 24}, {-1}})
+    ->ArgsProduct({{100000, 1000000}, {64}, {2}, {kDefaultTheta100}, {kDefaultLeaf}, {0, 16}})
     ->UseRealTime()
     ->Unit(benchmark::kMillisecond);
 

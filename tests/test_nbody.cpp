@@ -529,6 +529,9 @@ TEST(NbodyEdgeCases, BadInputThrowsAndLeavesTheOutputUnchanged) {
   b.theta = 0.5;
   b.leaf_size = 0;
   expect_error([&] { nb::barnes_hut_accelerations(s.x, s.y, s.m, ax, ay, b); }, "leaf_size");
+  b.leaf_size = 32;
+  b.target_block = -2;
+  expect_error([&] { nb::barnes_hut_accelerations(s.x, s.y, s.m, ax, ay, b); }, "target_block");
   // Outputs overlapping inputs.
   std::vector<double> buffer = s.x;
   const std::span<double> alias(buffer);
@@ -557,25 +560,30 @@ TEST(NbodyBarnesHut, ThetaZeroIsTheDirectSum) {
 //   disk      2.2e-7   5.3e-6   4.3e-5   4.9e-4   1.4e-3
 //   clusters  1.4e-7   1.3e-6   1.8e-5   1.9e-4   5.7e-4
 // (expanded to third order only: 4.3e-4 and 6.7e-5 at 0.5).
+// The opened leaves summed for the whole group (target_block 0) and for
+// blocks of 16 targets (float64 only).
 TEST(NbodyBarnesHut, ErrorFallsWithThetaAndIsSmallAtOneHalf) {
   for (const System& s : {disk(2000, 13), clusters(2000, 14)}) {
     const Field ref = reference(s, plummer(kSoftening));
-    for (const nb::Precision p : {nb::Precision::float64, nb::Precision::float32}) {
+    for (const auto& [p, block] :
+         {std::pair{nb::Precision::float64, 0}, std::pair{nb::Precision::float64, 16},
+          std::pair{nb::Precision::float32, 0}}) {
       double previous = 0.0;
       double at_one_fifth = 0.0;
       for (const double theta : {0.2, 0.3, 0.5, 0.7, 1.0}) {
         nb::BarnesHutOptions b;
         static_cast<nb::Options&>(b) = plummer(kSoftening);
         b.precision = p;
+        b.target_block = block;
         b.theta = theta;
         const Errors e = relative_errors(barnes_hut(s, b), ref);
-        EXPECT_GT(e.rms, previous) << "theta " << theta;
+        EXPECT_GT(e.rms, previous) << "theta " << theta << ", target_block " << block;
         previous = e.rms;
         if (theta == 0.2) at_one_fifth = e.rms;
         if (theta == 0.5) {
           // The fourth order's terms: 10x below the third order's error.
-          EXPECT_LT(e.rms, 1e-4);
-          EXPECT_LT(e.max, 3e-3);
+          EXPECT_LT(e.rms, 1e-4) << "target_block " << block;
+          EXPECT_LT(e.max, 3e-3) << "target_block " << block;
           // The truncation error falls about as theta^5 (98x from 0.5 to
           // 0.2): no other error (the far field's interpolation) may set a
           // floor above it. Measured 126x to 191x in float64, 34x to 41x in
@@ -596,10 +604,13 @@ TEST(NbodyBarnesHut, DefaultOptionsMeetTheAccuracyTarget) {
   // The density of 1000 bodies in radius 50, softening half the mean spacing.
   const System s = disk(kBodies, 22, 50.0 * std::sqrt(kBodies / 1000.0));
   const nb::Options law = plummer(1.4);
-  for (const nb::Precision p : {nb::Precision::float64, nb::Precision::float32}) {
+  for (const auto& [p, block] :
+       {std::pair{nb::Precision::float64, -1}, std::pair{nb::Precision::float64, 0},
+        std::pair{nb::Precision::float64, 16}, std::pair{nb::Precision::float32, -1}}) {
     nb::BarnesHutOptions b;  // the defaults: theta, leaf_size, group_size
     static_cast<nb::Options&>(b) = law;
     b.precision = p;
+    b.target_block = block;  // -1, the default, is 0 or 16 by instruction set
     const Field f = barnes_hut(s, b);
     double sum = 0.0;
     std::size_t count = 0;
@@ -610,7 +621,8 @@ TEST(NbodyBarnesHut, DefaultOptionsMeetTheAccuracyTarget) {
       ++count;
     }
     const double rms = std::sqrt(sum / static_cast<double>(count));
-    EXPECT_LT(rms, 1e-3) << (p == nb::Precision::float32 ? "float32" : "float64");
+    EXPECT_LT(rms, 1e-3) << (p == nb::Precision::float32 ? "float32" : "float64")
+                         << ", target_block " << block;
     EXPECT_GT(rms, 1e-6);  // an approximation: not the direct sum by accident
   }
 }
@@ -663,17 +675,54 @@ TEST(NbodyBarnesHut, TwoBodiesPullEachOtherEquallyAndOppositely) {
 
 TEST(NbodyBarnesHut, ResultsAreBitIdenticalForAnyThreadCount) {
   const System s = clusters(2000, 17);
-  for (const nb::Precision p : {nb::Precision::float64, nb::Precision::float32}) {
+  for (const auto& [p, block] :
+       {std::pair{nb::Precision::float64, 0}, std::pair{nb::Precision::float64, 16},
+        std::pair{nb::Precision::float32, 0}}) {
     nb::BarnesHutOptions b;
     static_cast<nb::Options&>(b) = plummer(kSoftening);
     b.precision = p;
+    b.target_block = block;
     b.threads = 1;
     const Field one = barnes_hut(s, b);
     for (const int threads : {2, 3}) {
       b.threads = threads;
-      EXPECT_TRUE(bit_identical(one, barnes_hut(s, b))) << "threads " << threads;
+      EXPECT_TRUE(bit_identical(one, barnes_hut(s, b)))
+          << "threads " << threads << ", target_block " << block;
     }
   }
+}
+
+// Blocks of targets (target_block) take as multipoles the opened leaves
+// their own boxes accept: fewer interactions, more of them with nodes, and
+// the error stays near the group's (float64; float32 ignores the option).
+TEST(NbodyBarnesHut, BlocksOfTargetsTakeTheLeavesTheirBoxesAccept) {
+  const System s = disk(8000, 29, 50.0 * std::sqrt(8.0));
+  const nb::Options law = plummer(1.4);
+  const Field ref = reference(s, law);
+  nb::BarnesHutOptions b;
+  static_cast<nb::Options&>(b) = law;
+  nb::BarnesHut solver;
+  const auto run = [&](int block, nb::Precision p) {
+    b.target_block = block;
+    b.precision = p;
+    Field f{std::vector<double>(s.size()), std::vector<double>(s.size())};
+    solver.accelerations(s.x, s.y, s.m, f.ax, f.ay, b);
+    return f;
+  };
+  const Field whole = run(0, nb::Precision::float64);
+  const nb::BarnesHutStats by_group = solver.stats();
+  const Field blocks = run(16, nb::Precision::float64);
+  const nb::BarnesHutStats by_block = solver.stats();
+  EXPECT_LT(by_block.interactions, by_group.interactions * 9 / 10);
+  EXPECT_GT(by_block.node_interactions, by_group.node_interactions);
+  const Errors e_group = relative_errors(whole, ref);
+  const Errors e_block = relative_errors(blocks, ref);
+  EXPECT_GT(e_block.rms, e_group.rms);  // more multipoles, a little more error
+  EXPECT_LT(e_block.rms, 1.5 * e_group.rms);
+  EXPECT_TRUE(bit_identical(run(0, nb::Precision::float32), run(16, nb::Precision::float32)));
+  // The default, -1, is the kernels' choice.
+  EXPECT_TRUE(bit_identical(run(-1, nb::Precision::float64),
+                            run(nb::kernel_target_block(), nb::Precision::float64)));
 }
 
 // The sums go back to the caller's order added to what the arrays hold, each
@@ -836,6 +885,7 @@ TEST(NbodyInstall, MutualAttractionUsesTheFastMethods) {
 TEST(NbodyBuild, ReportsItsKernelsAndThreads) {
   const std::string name = nb::kernel_name();
   EXPECT_FALSE(name.empty());
+  EXPECT_EQ(nb::kernel_target_block(), name == "avx2+fma" || name == "avx" ? 16 : 0);
   EXPECT_GE(nb::max_threads(), 1);
 }
 

@@ -124,6 +124,15 @@ struct BarnesHutOptions : Options {
   double theta = kDefaultTheta;
   int leaf_size = 32;    // a node with at most this many bodies is not split
   int group_size = 128;  // bodies of a node with at most this many share one tree walk
+  // Float64, Plummer law: a group's walk opens every leaf near any of its
+  // bodies; each run of this many of its targets (in Morton order, a compact
+  // patch) then takes as multipoles those leaves that its own box accepts.
+  // Fewer pairs, a little more error (N = 10^6 disk: RMS 6.4e-4 -> 6.9e-4).
+  // -1: the kernels' choice, kernel_target_block() (16 with AVX2, where it
+  // gains 1.13x a step; 0 with AVX-512, where it gains nothing;
+  // docs/PERFORMANCE.md, issue 9 part 9); 0: never. Float32 and the clamped
+  // laws ignore it.
+  int target_block = -1;
 };
 
 struct BarnesHutStats {
@@ -206,6 +215,9 @@ void install();
 // best the CPU supports (the environment variable CALDER_KERNELS=
 // avx512|avx2|baseline, read once, lowers the choice, for benchmarks).
 const char* kernel_name();
+// What BarnesHutOptions::target_block = -1 means with these kernels: 16
+// with the 256-bit ones ("avx2+fma", "avx"), 0 with the others.
+int kernel_target_block();
 // The number of threads that threads = 0 means (1 without OpenMP).
 int max_threads();
 

@@ -40,6 +40,10 @@ void check_options(const char* where, std::size_t n, const BarnesHutOptions& opt
         std::string(where) + ": options.leaf_size and options.group_size must be >= 1 (got " +
         std::to_string(options.leaf_size) + " and " + std::to_string(options.group_size) + ")");
   }
+  if (options.target_block < -1) {
+    throw Error(std::string(where) + ": options.target_block must be >= -1 (got " +
+                std::to_string(options.target_block) + ")");
+  }
   if (n >= std::size_t{std::numeric_limits<std::uint32_t>::max()}) {
     throw Error(std::string(where) + ": too many bodies (at most 2^32 - 2)");
   }
@@ -114,6 +118,8 @@ void BarnesHut::accelerations(std::span<const double> x, std::span<const double>
   const Clock::time_point t0 = Clock::now();
   w.leaf_size = static_cast<std::size_t>(options.leaf_size);
   w.group_size = static_cast<std::size_t>(options.group_size);
+  w.target_block = static_cast<std::size_t>(options.target_block < 0 ? kernel_target_block()
+                                                                     : options.target_block);
   w.inv_theta = options.theta > 0.0 ? 1.0 / options.theta : std::numeric_limits<double>::infinity();
   w.build(x, y, mass, threads);
   const detail::FloatFrame frame = detail::float_frame(w.x0 + w.side * 0.5, w.y0 + w.side * 0.5,

@@ -90,13 +90,20 @@ struct Columns {
   T* operator[](std::size_t k) { return column[k].data(); }
 };
 
+// Nodes as the multipole kernels read them: x, y, then the kMoments moments.
+template <typename T>
+using NodeColumns = Columns<T, detail::Nodes<T>::kColumns>;
+
 // One group's interaction lists.
 template <typename T>
 struct Lists {
-  Columns<T, 3> body;                           // x, y, m
-  Columns<T, detail::Nodes<T>::kColumns> node;  // x, y, then the kMoments moments
-  Columns<T, detail::Nodes<T>::kColumns> far;   // the same, interpolated over the group
-  std::vector<T> tx;                            // float32 targets
+  Columns<T, 3> body;                 // x, y, m
+  NodeColumns<T> node;                // accepted nodes
+  NodeColumns<T> far;                 // the same, interpolated over the group
+  std::vector<std::uint32_t> leaves;  // the leaves whose bodies are in body, in order
+  Columns<T, 3> block_body;           // a block of targets' share of body
+  NodeColumns<T> block_node;          // and the leaves its box accepts
+  std::vector<T> tx;                  // float32 targets
   std::vector<T> ty;
 };
 
@@ -193,6 +200,7 @@ struct BarnesHut::Workspace {
   double inv_theta = 0.0;  // 1 / theta, +inf for theta = 0
   std::size_t leaf_size = 1;
   std::size_t group_size = 1;
+  std::size_t target_block = 0;  // float64: targets that re-test the opened leaves (0: none)
 
   // Walk: sums in Morton order, and each thread's lists.
   std::vector<double> sum_x;
@@ -257,10 +265,17 @@ struct BarnesHut::Workspace {
   void add_node(const bh::GroupFrame& f, std::uint32_t index, bool multipoles,
                 bh::Lists<T>& lists) const;
   template <typename T>
-  void add_leaf(const bh::GroupFrame& f, const bh::Node& n, bh::Lists<T>& lists) const;
+  void add_multipoles(const bh::GroupFrame& f, std::uint32_t index,
+                      bh::NodeColumns<T>& nodes) const;
+  template <typename T>
+  void add_leaf(const bh::GroupFrame& f, std::uint32_t index, bh::Lists<T>& lists) const;
   template <typename T>
   void sum_far(const bh::Node& g, const bh::GroupFrame& f, const detail::KernelTable& k,
                const detail::LawParams& p, bh::Lists<T>& lists);
+  template <typename T>
+  void sum_leaves_by_block(const bh::Node& g, const bh::GroupFrame& f, const detail::KernelTable& k,
+                           const detail::LawParams& p, Scratch& s, bh::Lists<T>& lists, const T* tx,
+                           const T* ty);
   template <typename T>
   void sum_group(const bh::Node& g, const bh::GroupFrame& f, const detail::KernelTable& k,
                  const detail::LawParams& p, Scratch& s, bh::Lists<T>& lists);

@@ -214,12 +214,13 @@ void BarnesHut::Workspace::walk_unit(std::uint32_t first, std::uint32_t count, S
     lists->body.clear();
     lists->node.clear();
     lists->far.clear();
+    lists->leaves.clear();
     for (const std::uint32_t index : s.unit_near) add_node(f, index, true, *lists);
     for (const std::uint32_t index : s.unit_leaves) {
       if (accepts(tree.nodes[index], f)) {
         add_node(f, index, true, *lists);
       } else {
-        add_leaf(f, tree.nodes[index], *lists);
+        add_leaf(f, index, *lists);
       }
     }
     sum_group(group, f, k, p, s, *lists);
@@ -238,34 +239,45 @@ template <typename T>
 void BarnesHut::Workspace::add_node(const bh::GroupFrame& f, std::uint32_t index, bool multipoles,
                                     bh::Lists<T>& lists) const {
   const bh::Node& n = tree.nodes[index];
+  if (multipoles) {
+    add_multipoles(f, index, is_far(n, f) ? lists.far : lists.node);
+    return;
+  }
+  const std::size_t r = lists.body.make_room(1);  // a point mass
+  lists.body[0][r] = static_cast<T>((n.mx - f.ox) * f.scale);
+  lists.body[1][r] = static_cast<T>((n.my - f.oy) * f.scale);
+  if constexpr (sizeof(T) == 4) {
+    lists.body[2][r] = node32[std::size_t{index} * bh::kMoments];
+  } else {
+    lists.body[2][r] = node64[std::size_t{index} * bh::kMoments];
+  }
+  lists.body.size = r + 1;
+}
+
+// Node `index`'s centre (in frame f) and moments, a row of `nodes`.
+template <typename T>
+void BarnesHut::Workspace::add_multipoles(const bh::GroupFrame& f, std::uint32_t index,
+                                          bh::NodeColumns<T>& nodes) const {
+  const bh::Node& n = tree.nodes[index];
   const T* m;
   if constexpr (sizeof(T) == 4) {
     m = node32.data() + std::size_t{index} * bh::kMoments;
   } else {
     m = node64.data() + std::size_t{index} * bh::kMoments;
   }
-  const T x = static_cast<T>((n.mx - f.ox) * f.scale);
-  const T y = static_cast<T>((n.my - f.oy) * f.scale);
-  if (multipoles) {
-    auto& accepted = is_far(n, f) ? lists.far : lists.node;
-    const std::size_t r = accepted.make_room(1);
-    accepted[0][r] = x;
-    accepted[1][r] = y;
-    for (std::size_t a = 0; a < bh::kMoments; ++a) accepted[2 + a][r] = m[a];
-    accepted.size = r + 1;
-  } else {  // a point mass
-    const std::size_t r = lists.body.make_room(1);
-    lists.body[0][r] = x;
-    lists.body[1][r] = y;
-    lists.body[2][r] = m[0];
-    lists.body.size = r + 1;
-  }
+  const std::size_t r = nodes.make_room(1);
+  nodes[0][r] = static_cast<T>((n.mx - f.ox) * f.scale);
+  nodes[1][r] = static_cast<T>((n.my - f.oy) * f.scale);
+  for (std::size_t a = 0; a < bh::kMoments; ++a) nodes[2 + a][r] = m[a];
+  nodes.size = r + 1;
 }
 
-// The bodies of leaf n into the body list of the group of frame f.
+// The bodies of leaf `index` into the body list of the group of frame f.
 template <typename T>
-void BarnesHut::Workspace::add_leaf(const bh::GroupFrame& f, const bh::Node& n,
+void BarnesHut::Workspace::add_leaf(const bh::GroupFrame& f, std::uint32_t index,
                                     bh::Lists<T>& lists) const {
+  const bh::Node& n = tree.nodes[index];
+  lists.leaves.push_back(index);
   auto& body = lists.body;
   const std::size_t count = n.end - n.begin;
   const std::size_t r = body.make_room(count);
@@ -335,10 +347,11 @@ void BarnesHut::Workspace::collect(const bh::GroupFrame& f, bool multipoles, Scr
   lists.body.clear();
   lists.node.clear();
   lists.far.clear();
+  lists.leaves.clear();
   visit(
       tree.nodes, f, s.stack,
       [&](std::uint32_t index) CALDER_BH_INLINE { add_node(f, index, multipoles, lists); },
-      [&](std::uint32_t index) CALDER_BH_INLINE { add_leaf(f, tree.nodes[index], lists); });
+      [&](std::uint32_t index) CALDER_BH_INLINE { add_leaf(f, index, lists); });
 }
 
 // The far nodes' field, evaluated at kStencil x kStencil Chebyshev points of
@@ -415,8 +428,8 @@ void BarnesHut::Workspace::sum_far(const bh::Node& g, const bh::GroupFrame& f,
   }
 }
 
-// Each target of the group: the accepted nodes (in walk order), then the
-// bodies, into sum_x, sum_y.
+// Each target of the group: the far field, the accepted nodes (in walk
+// order), then the bodies, into sum_x, sum_y.
 template <typename T>
 void BarnesHut::Workspace::sum_group(const bh::Node& g, const bh::GroupFrame& f,
                                      const detail::KernelTable& k, const detail::LawParams& p,
@@ -424,9 +437,16 @@ void BarnesHut::Workspace::sum_group(const bh::Node& g, const bh::GroupFrame& f,
   const std::size_t count = g.end - g.begin;
   auto& body = lists.body;
   auto& accepted = lists.node;
+  // Float64 sums the Plummer law's opened leaves block by block where asked
+  // (target_block; the clamped laws' body list also holds the accepted
+  // nodes' point masses). Float32 pairs are cheap enough that the blocks'
+  // lists cost more than they save (0.91-0.96x, AVX2 and AVX-512).
+  const bool by_block =
+      sizeof(T) == 8 && p.law == Law::plummer && target_block > 0 && count > target_block;
   const std::size_t far_rows = lists.far.size > 0 ? kStencil * kStencil : 0;
   s.interactions +=
-      static_cast<std::uint64_t>(count) * (body.size + accepted.size) + far_rows * lists.far.size;
+      static_cast<std::uint64_t>(count) * (accepted.size + (by_block ? 0 : body.size)) +
+      far_rows * lists.far.size;
   s.node_interactions +=
       static_cast<std::uint64_t>(count) * accepted.size + far_rows * lists.far.size;
   double* out_x = sum_x.data() + g.begin;
@@ -454,7 +474,62 @@ void BarnesHut::Workspace::sum_group(const bh::Node& g, const bh::GroupFrame& f,
     const T* ty = sy.data() + g.begin;
     if (lists.far.size > 0) sum_far(g, f, k, p, lists);
     if (node_list.n > 0) k.multipole64(tx, ty, count, node_list, p, out_x, out_y);
-    k.group64(tx, ty, count, body_list, p, out_x, out_y);
+    if (by_block) {
+      sum_leaves_by_block(g, f, k, p, s, lists, tx, ty);
+    } else {
+      k.group64(tx, ty, count, body_list, p, out_x, out_y);
+    }
+  }
+}
+
+// The group's walk opens every leaf near any of its bodies. For each block
+// of target_block consecutive targets (a compact patch: they are in Morton
+// order), the leaves (lists.leaves, their bodies in lists.body) that the
+// block's own box accepts are summed as multipoles, the others' bodies as
+// pairs.
+template <typename T>
+void BarnesHut::Workspace::sum_leaves_by_block(const bh::Node& g, const bh::GroupFrame& f,
+                                               const detail::KernelTable& k,
+                                               const detail::LawParams& p, Scratch& s,
+                                               bh::Lists<T>& lists, const T* tx, const T* ty) {
+  const std::size_t count = g.end - g.begin;
+  auto& block_body = lists.block_body;
+  auto& block_node = lists.block_node;
+  for (std::size_t first = 0; first < count; first += target_block) {
+    const std::size_t targets = std::min(target_block, count - first);
+    bh::Node block;
+    block.begin = g.begin + static_cast<std::uint32_t>(first);
+    block.end = block.begin + static_cast<std::uint32_t>(targets);
+    const bh::GroupFrame box = group_frame(block, false, 1.0, 0.0);
+    block_body.clear();
+    block_node.clear();
+    std::size_t row = 0;  // the leaf's first row in lists.body
+    for (const std::uint32_t index : lists.leaves) {
+      const bh::Node& n = tree.nodes[index];
+      const std::size_t bodies = n.end - n.begin;
+      if (accepts(n, box)) {
+        add_multipoles(f, index, block_node);
+      } else {
+        const std::size_t r = block_body.make_room(bodies);
+        for (std::size_t c = 0; c < 3; ++c) {
+          std::memcpy(block_body[c] + r, lists.body[c] + row, bodies * sizeof(T));
+        }
+        block_body.size = r + bodies;
+      }
+      row += bodies;
+    }
+    s.interactions += static_cast<std::uint64_t>(targets) * (block_body.size + block_node.size);
+    s.node_interactions += static_cast<std::uint64_t>(targets) * block_node.size;
+    double* out_x = sum_x.data() + block.begin;
+    double* out_y = sum_y.data() + block.begin;
+    detail::Nodes<T> node_list;
+    for (std::size_t c = 0; c < detail::Nodes<T>::kColumns; ++c) {
+      node_list.column[c] = block_node[c];
+    }
+    node_list.n = block_node.size;
+    const detail::Bodies<T> body_list{block_body[0], block_body[1], block_body[2], block_body.size};
+    if (node_list.n > 0) k.multipole64(tx + first, ty + first, targets, node_list, p, out_x, out_y);
+    k.group64(tx + first, ty + first, targets, body_list, p, out_x, out_y);
   }
 }
 

@@ -68,6 +68,17 @@ constexpr const char* kName = "generic";
 // Barnes-Hut groups (tens of targets): blocks of this many vectors, then
 // single ones (run_group_blocks).
 constexpr std::size_t kGroupBlockVectors = 2;
+// Barnes-Hut, float64: a group's opened leaves re-tested for each block of
+// this many targets (BarnesHutOptions::target_block). With AVX2 a float64
+// multipole costs about four pairs and an opened leaf holds about 19
+// bodies: 1.13x a step at N = 10^6 (disk, 2 threads; RMS 6.4e-4 -> 6.9e-4);
+// with AVX-512 0.98x, so it keeps the group's list. Not measured for the
+// other sets. docs/PERFORMANCE.md, issue 9 part 9.
+#if defined(__AVX__) && !defined(__AVX512F__)
+constexpr std::size_t kLeafBlock64 = 16;
+#else
+constexpr std::size_t kLeafBlock64 = 0;
+#endif
 
 using VD = double __attribute__((vector_size(kVectorBytes)));
 using VF = float __attribute__((vector_size(kVectorBytes)));
@@ -870,6 +881,7 @@ const KernelTable& CALDER_NBODY_CAT(kernel_table_, CALDER_KERNEL_VARIANT)() {
                                  accumulate32<kGroupBlockVectors, true>,
                                  accumulate_multipole<double>,
                                  accumulate_multipole<float>,
+                                 kLeafBlock64,
                                  pairs64,
                                  pairs32};
   return table;

@@ -148,6 +148,8 @@ struct KernelTable {
   Accumulate32 group32;
   AccumulateMultipole64 multipole64;
   AccumulateMultipole32 multipole32;
+  // Barnes-Hut, float64: the default of BarnesHutOptions::target_block.
+  std::size_t leaf_block64;
   Pairs64 pairs64;  // direct summation, each pair once (Newton's third law)
   Pairs32 pairs32;
 };
