@@ -763,12 +763,13 @@ Section barnes_hut_section(const Plan& plan, Runner& runner, Results& results) {
       "One step is one evaluation of all N accelerations (tree build and walk; leaf " +
           std::to_string(nb::BarnesHutOptions{}.leaf_size) + ", group " +
           std::to_string(nb::BarnesHutOptions{}.group_size) +
-          ", multipoles to fourth order, the far nodes' field interpolated over each group; "
-          "float64 re-tests the opened leaves for each run of " +
-          std::to_string(nb::kernel_target_block()) +
-          " targets with these kernels, 0 meaning "
-          "never: BarnesHutOptions::target_block) on the uniform disk of the direct rows, "
-          "Plummer softening " +
+          ", multipoles to fourth order, the far nodes' field interpolated over each group; " +
+          (nb::kernel_target_block() > 0
+               ? "float64 re-tests the opened leaves for each run of " +
+                     std::to_string(nb::kernel_target_block()) + " targets"
+               : std::string("float64 sums the opened leaves for the whole group")) +
+          " with these kernels: BarnesHutOptions::target_block) on the uniform disk of the "
+          "direct rows, Plummer softening " +
           printf_text("%.2g", peers::kDiskSoftening) + ".",
       "tree build: its share of a step (bounding box, Morton sort, tree, moments; the rest is "
       "the walk). From 2,000 bodies every part of it runs on the threads too: the Morton "

@@ -116,7 +116,9 @@ struct BarnesHutOptions : Options {
   // disks (softening half the mean spacing, 1000 bodies sampled): 5.5e-4
   // (N = 2000), 6.6e-4 (10^4), 6.6e-4 (10^5), 6.4e-4 (10^6), 8.5e-4
   // (2 x 10^6); at 0.75 7.1e-4, 7.9e-4, 1.0e-3 (10^4 to 10^6); at 0.6
-  // 1.8e-4, 1.1e-4, 1.8e-4. Clumps: 1.1e-4 at 0.7 (10^4). With multipoles
+  // 1.8e-4, 1.1e-4, 1.8e-4. Float64 with target_block 16 (AVX2's default)
+  // at 0.7: 5.9e-4, 7.7e-4, 7.2e-4, 6.9e-4, 9.2e-4 (2000 to 2 x 10^6).
+  // Clumps: 1.1e-4 at 0.7 (10^4). With multipoles
   // to fourth order it falls about as theta^5. The bodies of weak pull (near
   // a disk's centre) carry most of it (docs/PERFORMANCE.md, issue 9 part 7).
   // The clamped laws sum monopoles only: their error at 0.7 is about 1e-2
