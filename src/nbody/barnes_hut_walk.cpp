@@ -37,7 +37,7 @@ namespace {
 // where it adds little (N = 10^6 disk: RMS 6.4e-4; with a ratio of 1.8 /
 // theta, 2.6 half sides there, 2.6e-3: with nodes to fourth order the
 // interpolation's error shows first when the far field comes nearer).
-constexpr std::size_t kStencil = 4;
+constexpr std::size_t kStencil = detail::kFarStencil;
 constexpr double kFarRatio = 2.8;
 // A unit's far list (walk_unit): its square is about twice a group's, and
 // beyond kUnitFarRatio / theta of its half sides (6 at theta 0.7) its
@@ -383,49 +383,11 @@ void BarnesHut::Workspace::sum_far(const bh::Node& g, const bh::GroupFrame& f,
   } else {
     k.multipole64(px, py, S * S, far, p, fx, fy);
   }
-  // Per target: the Lagrange basis at its (u, v) in the square, the values
-  // contracted along v, then along u. Straight-line code per target (S is a
-  // constant), which the compiler may run over vectors of targets. (No
-  // `omp simd`: at -O1, clang's fuzzing build, it fails to vectorise and
-  // -Werror stops the build.)
-  const double inv_half = 1.0 / f.half;
-  const double* px_body = sx.data() + g.begin;
-  const double* py_body = sy.data() + g.begin;
-  double* out_x = sum_x.data() + g.begin;
-  double* out_y = sum_y.data() + g.begin;
-  const std::size_t count = g.end - g.begin;
-  for (std::size_t b = 0; b < count; ++b) {
-    const double u = (px_body[b] - f.cx) * inv_half;
-    const double v = (py_body[b] - f.cy) * inv_half;
-    double lu[S];
-    double lv[S];
-    for (std::size_t i = 0; i < S; ++i) {
-      double a = st.weight[i];
-      double c = st.weight[i];
-      for (std::size_t j = 0; j < S; ++j) {
-        if (j != i) {
-          a *= u - nodes_u[j];
-          c *= v - nodes_u[j];
-        }
-      }
-      lu[i] = a;
-      lv[i] = c;
-    }
-    double ax = 0.0;
-    double ay = 0.0;
-    for (std::size_t i = 0; i < S; ++i) {
-      double cx = 0.0;
-      double cy = 0.0;
-      for (std::size_t j = 0; j < S; ++j) {
-        cx += lv[j] * fx[i * S + j];
-        cy += lv[j] * fy[i * S + j];
-      }
-      ax += lu[i] * cx;
-      ay += lu[i] * cy;
-    }
-    out_x[b] += ax;
-    out_y[b] += ay;
-  }
+  // Per target (a kernel, over vectors of targets): the Lagrange basis at its
+  // (u, v) in the square, the values contracted along v, then along u.
+  const detail::FarField field{f.cx, f.cy, 1.0 / f.half, st.u, st.weight, fx, fy};
+  k.interpolate_far(sx.data() + g.begin, sy.data() + g.begin, g.end - g.begin, field,
+                    sum_x.data() + g.begin, sum_y.data() + g.begin);
 }
 
 // Each target of the group: the far field, the accepted nodes (in walk
@@ -440,7 +402,7 @@ void BarnesHut::Workspace::sum_group(const bh::Node& g, const bh::GroupFrame& f,
   // Float64 sums the Plummer law's opened leaves block by block where asked
   // (target_block; the clamped laws' body list also holds the accepted
   // nodes' point masses). Float32 pairs are cheap enough that the blocks'
-  // lists cost more than they save (0.91-0.96x, AVX2 and AVX-512).
+  // lists cost more than they save (0.91-0.97x, AVX2 and AVX-512).
   const bool by_block =
       sizeof(T) == 8 && p.law == Law::plummer && target_block > 0 && count > target_block;
   const std::size_t far_rows = lists.far.size > 0 ? kStencil * kStencil : 0;

@@ -72,8 +72,8 @@ constexpr std::size_t kGroupBlockVectors = 2;
 // this many targets (BarnesHutOptions::target_block). With AVX2 a float64
 // multipole costs about four pairs and an opened leaf holds about 19
 // bodies: 1.13x a step at N = 10^6 (disk, 2 threads; RMS 6.4e-4 -> 6.9e-4);
-// with AVX-512 0.98x, so it keeps the group's list. Not measured for the
-// other sets. docs/PERFORMANCE.md, issue 9 part 9.
+// with AVX-512 0.96-1.02x (within the noise), so it keeps the group's list.
+// Not measured for the other sets. docs/PERFORMANCE.md, issue 9 part 9.
 #if defined(__AVX__) && !defined(__AVX512F__)
 constexpr std::size_t kLeafBlock64 = 16;
 #else
@@ -867,6 +867,50 @@ void accumulate_multipole(const T* tx, const T* ty, std::size_t nt, const Nodes<
       tx, ty, nullptr, nullptr, nt, MultipoleSources<V>{s, splat<V>(eps2_of<T>(p))}, out_x, out_y);
 }
 
+// A vector of targets at a time (a short tail padded with its first
+// target): the basis along u and along v, the values contracted along v,
+// then along u. Every lane does the same operations in the same order.
+void interpolate_far(const double* tx, const double* ty, std::size_t nt, const FarField& far,
+                     double* out_x, double* out_y) {
+  constexpr std::size_t S = kFarStencil;
+  constexpr std::size_t L = kLanes<VD>;
+  for (std::size_t first = 0; first < nt; first += L) {
+    double buffer_x[L];
+    double buffer_y[L];
+    const VD u = (load<VD>(block_of(tx, first, nt, buffer_x)) - far.cx) * far.inv_half;
+    const VD v = (load<VD>(block_of(ty, first, nt, buffer_y)) - far.cy) * far.inv_half;
+    VD lu[S];
+    VD lv[S];
+    for (std::size_t i = 0; i < S; ++i) {
+      lu[i] = splat<VD>(far.weights[i]);
+      lv[i] = lu[i];
+      for (std::size_t j = 0; j < S; ++j) {
+        if (j != i) {
+          lu[i] *= u - far.nodes[j];
+          lv[i] *= v - far.nodes[j];
+        }
+      }
+    }
+    VD ax = {};
+    VD ay = {};
+    for (std::size_t i = 0; i < S; ++i) {
+      VD cx = {};
+      VD cy = {};
+      for (std::size_t j = 0; j < S; ++j) {
+        cx += lv[j] * far.fx[i * S + j];
+        cy += lv[j] * far.fy[i * S + j];
+      }
+      ax += lu[i] * cx;
+      ay += lu[i] * cy;
+    }
+    const std::size_t count = nt - first < L ? nt - first : L;
+    for (std::size_t k = 0; k < count; ++k) {
+      out_x[first + k] += ax[k];
+      out_y[first + k] += ay[k];
+    }
+  }
+}
+
 }  // namespace
 
 const KernelTable& CALDER_NBODY_CAT(kernel_table_, CALDER_KERNEL_VARIANT)() {
@@ -882,6 +926,7 @@ const KernelTable& CALDER_NBODY_CAT(kernel_table_, CALDER_KERNEL_VARIANT)() {
                                  accumulate_multipole<double>,
                                  accumulate_multipole<float>,
                                  kLeafBlock64,
+                                 interpolate_far,
                                  pairs64,
                                  pairs32};
   return table;

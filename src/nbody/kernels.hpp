@@ -136,6 +136,23 @@ using Pairs32 = void (*)(const Bodies<float>& a, const Bodies<float>& b, const L
 
 inline constexpr std::size_t kFloatTile = 512;
 
+// Barnes-Hut's far field of a group: its values (fx, fy)[i * kFarStencil + j]
+// at the points (cx + half u_i, cy + half u_j) of the group's square, u the
+// Chebyshev points on [-1, 1] (`nodes`) with the Lagrange basis' weights
+// 1 / prod_{j != i} (u_i - u_j) (`weights`), interpolated at each target by
+// the tensor product of the Lagrange polynomials of degree kFarStencil - 1.
+inline constexpr std::size_t kFarStencil = 4;
+struct FarField {
+  double cx, cy, inv_half;
+  const double* nodes;    // kFarStencil
+  const double* weights;  // kFarStencil
+  const double* fx;       // kFarStencil^2
+  const double* fy;
+};
+// The far field at targets (tx, ty)[0, nt), added to out_x, out_y.
+using InterpolateFar = void (*)(const double* tx, const double* ty, std::size_t nt,
+                                const FarField& far, double* out_x, double* out_y);
+
 struct KernelTable {
   const char* name;           // e.g. "avx512", "avx2+fma", "sse2", "generic"
   std::size_t block64;        // targets per register block of the direct kernels, float64
@@ -150,6 +167,7 @@ struct KernelTable {
   AccumulateMultipole32 multipole32;
   // Barnes-Hut, float64: the default of BarnesHutOptions::target_block.
   std::size_t leaf_block64;
+  InterpolateFar interpolate_far;
   Pairs64 pairs64;  // direct summation, each pair once (Newton's third law)
   Pairs32 pairs32;
 };
