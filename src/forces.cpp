@@ -108,6 +108,12 @@ void AttractionLaw::validate(const char* where) const {
   if (repulsion != 0.0 && (softening != 0.0 || clamp == DistanceClamp::squared_distance)) {
     throw Error(w + ": a repulsive core needs the distance clamp or no clamp, without softening");
   }
+  if (clamp != DistanceClamp::none && softening != 0.0) {
+    // A clamped law never reads it: said, not silently dropped.
+    throw Error(w + ": softening needs clamp \"none\" (got softening " +
+                detail::format_number(softening) + " with a clamped law, whose min bounds the " +
+                "force)");
+  }
   if (clamp != DistanceClamp::none) {
     detail::require_non_negative(min, w.c_str(), "min");
     detail::require_non_negative(max, w.c_str(), "max");

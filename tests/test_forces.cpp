@@ -462,6 +462,12 @@ TEST(AttractionLaw, ValidateRejectsBadParameters) {
   expect_error([&] { zero_min.validate("w"); }, {"min"});
   AttractionLaw negative_softening = AttractionLaw::newtonian(1.0, -1.0);
   expect_error([&] { negative_softening.validate("w"); }, {"softening"});
+  // Softening with a clamp would be silently unused: an error naming it.
+  AttractionLaw clamped_softening = AttractionLaw::book();
+  clamped_softening.softening = 4.0;
+  expect_error([&] { clamped_softening.validate("w"); }, {"softening", "clamp \"none\""});
+  clamped_softening.clamp = DistanceClamp::squared_distance;
+  expect_error([&] { clamped_softening.validate("w"); }, {"softening", "clamp \"none\""});
   // Valid laws pass; the book's, the physical one, a custom one.
   EXPECT_NO_THROW(AttractionLaw::book().validate("w"));
   EXPECT_NO_THROW(AttractionLaw::newtonian(6.674e-11, 0.1).validate("w"));

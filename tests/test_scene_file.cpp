@@ -357,6 +357,10 @@ TEST(SceneFileErrors, ValidationOfALawPointsAtIt) {
   // AttractionLaw::validate's message, placed at the law.
   EXPECT_EQ(error_of("[[fields]]\ntype = \"attractor\"\nlaw = { min = 30, max = 25 }\n"),
             "t.toml:3:7: attractor: attraction law: min must not exceed max (got min 30, max 25)");
+  // Softening under the default clamp ("distance") would be silently unused.
+  EXPECT_EQ(error_of("[[fields]]\ntype = \"mutual_attraction\"\nlaw = { softening = 4 }\n"),
+            "t.toml:3:7: mutual_attraction: attraction law: softening needs clamp \"none\" (got "
+            "softening 4 with a clamped law, whose min bounds the force)");
 }
 
 TEST(SceneFileErrors, OneLine) {

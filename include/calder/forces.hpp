@@ -97,7 +97,7 @@ struct AttractionLaw {
   DistanceClamp clamp = DistanceClamp::distance;
   double min = 5.0;        // lower bound of the clamped quantity (distance, or squared distance)
   double max = 25.0;       // upper bound of the clamped quantity
-  double softening = 0.0;  // Plummer epsilon, with DistanceClamp::none
+  double softening = 0.0;  // Plummer epsilon; only with DistanceClamp::none (else an error)
   MassProduct product = MassProduct::left_to_right;
   // Other force laws of distance, as data (exercise 2.13): the attraction
   // is G M m / d^exponent (2: Newton; 1 or less: weaker when close), minus a
