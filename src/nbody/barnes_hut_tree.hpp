@@ -255,6 +255,7 @@ struct BarnesHut::Workspace {
                   const detail::LawParams& p, double scale);
   // The bodies' box; a far list beyond far_ratio / theta of its half sides.
   bh::GroupFrame group_frame(const bh::Node& g, bool float32, double scale, double far_ratio) const;
+  bh::GroupFrame bounding_box(std::uint32_t begin, std::uint32_t end) const;
   template <typename T>
   void collect(const bh::GroupFrame& f, bool multipoles, Scratch& s, bh::Lists<T>& lists);
   void plan_units();

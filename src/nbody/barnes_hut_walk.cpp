@@ -315,15 +315,7 @@ void BarnesHut::Workspace::walk_group(std::uint32_t group, Scratch& s, const det
 // the frame's scale.
 bh::GroupFrame BarnesHut::Workspace::group_frame(const bh::Node& g, bool float32, double scale,
                                                  double far_ratio) const {
-  bh::GroupFrame f;
-  f.x0 = f.x1 = sx[g.begin];
-  f.y0 = f.y1 = sy[g.begin];
-  for (std::uint32_t b = g.begin + 1; b < g.end; ++b) {
-    f.x0 = std::min(f.x0, sx[b]);
-    f.x1 = std::max(f.x1, sx[b]);
-    f.y0 = std::min(f.y0, sy[b]);
-    f.y1 = std::max(f.y1, sy[b]);
-  }
+  bh::GroupFrame f = bounding_box(g.begin, g.end);
   if (float32) {
     f.ox = f.x0 + (f.x1 - f.x0) * 0.5;
     f.oy = f.y0 + (f.y1 - f.y0) * 0.5;
@@ -335,6 +327,21 @@ bh::GroupFrame BarnesHut::Workspace::group_frame(const bh::Node& g, bool float32
     f.half = 0.5 * std::max(f.x1 - f.x0, f.y1 - f.y0);
     const double r = far_ratio * inv_theta * f.half;  // +inf at theta 0: no far list
     f.far2 = f.half > 0.0 ? r * r : 0.0;
+  }
+  return f;
+}
+
+// The bounding box of bodies [begin, end) (a frame with no far list, no
+// float32 origin).
+bh::GroupFrame BarnesHut::Workspace::bounding_box(std::uint32_t begin, std::uint32_t end) const {
+  bh::GroupFrame f;
+  f.x0 = f.x1 = sx[begin];
+  f.y0 = f.y1 = sy[begin];
+  for (std::uint32_t b = begin + 1; b < end; ++b) {
+    f.x0 = std::min(f.x0, sx[b]);
+    f.x1 = std::max(f.x1, sx[b]);
+    f.y0 = std::min(f.y0, sy[b]);
+    f.y1 = std::max(f.y1, sy[b]);
   }
   return f;
 }
@@ -459,10 +466,8 @@ void BarnesHut::Workspace::sum_leaves_by_block(const bh::Node& g, const bh::Grou
   auto& block_node = lists.block_node;
   for (std::size_t first = 0; first < count; first += target_block) {
     const std::size_t targets = std::min(target_block, count - first);
-    bh::Node block;
-    block.begin = g.begin + static_cast<std::uint32_t>(first);
-    block.end = block.begin + static_cast<std::uint32_t>(targets);
-    const bh::GroupFrame box = group_frame(block, false, 1.0, 0.0);
+    const auto begin = g.begin + static_cast<std::uint32_t>(first);
+    const bh::GroupFrame box = bounding_box(begin, begin + static_cast<std::uint32_t>(targets));
     block_body.clear();
     block_node.clear();
     std::size_t row = 0;  // the leaf's first row in lists.body
@@ -482,8 +487,8 @@ void BarnesHut::Workspace::sum_leaves_by_block(const bh::Node& g, const bh::Grou
     }
     s.interactions += static_cast<std::uint64_t>(targets) * (block_body.size + block_node.size);
     s.node_interactions += static_cast<std::uint64_t>(targets) * block_node.size;
-    double* out_x = sum_x.data() + block.begin;
-    double* out_y = sum_y.data() + block.begin;
+    double* out_x = sum_x.data() + begin;
+    double* out_y = sum_y.data() + begin;
     detail::Nodes<T> node_list;
     for (std::size_t c = 0; c < detail::Nodes<T>::kColumns; ++c) {
       node_list.column[c] = block_node[c];

@@ -400,7 +400,7 @@ void direct_accelerations(std::span<const double> x, std::span<const double> y,
 }
 
 const char* kernel_name() { return detail::kernels().name; }
-int kernel_target_block() { return static_cast<int>(detail::kernels().leaf_block64); }
+int kernel_target_block() { return static_cast<int>(detail::kernels().target_block64); }
 
 int max_threads() { return detail::thread_count(Options{}); }
 

@@ -75,9 +75,9 @@ constexpr std::size_t kGroupBlockVectors = 2;
 // with AVX-512 0.96-1.02x (within the noise), so it keeps the group's list.
 // Not measured for the other sets. docs/PERFORMANCE.md, issue 9 part 9.
 #if defined(__AVX__) && !defined(__AVX512F__)
-constexpr std::size_t kLeafBlock64 = 16;
+constexpr std::size_t kTargetBlock64 = 16;
 #else
-constexpr std::size_t kLeafBlock64 = 0;
+constexpr std::size_t kTargetBlock64 = 0;
 #endif
 
 using VD = double __attribute__((vector_size(kVectorBytes)));
@@ -925,7 +925,7 @@ const KernelTable& CALDER_NBODY_CAT(kernel_table_, CALDER_KERNEL_VARIANT)() {
                                  accumulate32<kGroupBlockVectors, true>,
                                  accumulate_multipole<double>,
                                  accumulate_multipole<float>,
-                                 kLeafBlock64,
+                                 kTargetBlock64,
                                  interpolate_far,
                                  pairs64,
                                  pairs32};

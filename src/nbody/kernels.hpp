@@ -166,7 +166,7 @@ struct KernelTable {
   AccumulateMultipole64 multipole64;
   AccumulateMultipole32 multipole32;
   // Barnes-Hut, float64: the default of BarnesHutOptions::target_block.
-  std::size_t leaf_block64;
+  std::size_t target_block64;
   InterpolateFar interpolate_far;
   Pairs64 pairs64;  // direct summation, each pair once (Newton's third law)
   Pairs32 pairs32;
