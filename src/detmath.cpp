@@ -12,6 +12,13 @@
 // operation is a plain IEEE double operation in a fixed order (calder compiles
 // with -ffp-contract=off), and the words of a double are read and written
 // through its 64-bit pattern, so the results do not depend on the platform.
+//
+// fdlibm's notice, as its licence asks (THIRD_PARTY.md):
+//   Copyright (C) 1993 by Sun Microsystems, Inc. All rights reserved.
+//   Developed at SunSoft, a Sun Microsystems, Inc. business.
+//   Permission to use, copy, modify, and distribute this
+//   software is freely granted, provided that this notice
+//   is preserved.
 #include "calder/detmath.hpp"
 
 #include <cmath>  // floor, sqrt, fabs and copysign: exact in every C library
