@@ -4,6 +4,7 @@
 #include <cmath>
 #include <string>
 
+#include "calder/detmath.hpp"
 #include "calder/error.hpp"
 #include "calder/random.hpp"
 
@@ -138,17 +139,17 @@ double strength_of(double G, double source_mass, double target_mass, double deno
 // The magnitude at distance d (already clamped) of the power law with its
 // repulsive core. Exponent 2 keeps the book's d * d, bit for bit.
 double power_strength(const AttractionLaw& law, double source_mass, double target_mass, double d) {
-  const double denominator = law.exponent == 2.0 ? d * d : std::pow(d, law.exponent);
+  const double denominator = law.exponent == 2.0 ? d * d : math::pow(d, law.exponent);
   double strength = strength_of(law.G, source_mass, target_mass, denominator, law.product);
   if (law.repulsion != 0.0) {
-    strength -= law.repulsion * source_mass * target_mass / std::pow(d, law.repulsion_exponent);
+    strength -= law.repulsion * source_mass * target_mass / math::pow(d, law.repulsion_exponent);
   }
   return strength;
 }
 
 // An antiderivative of d^-p: d^(1-p) / (1-p), or ln d for p = 1.
 double power_integral(double d, double p) {
-  return p == 1.0 ? std::log(d) : std::pow(d, 1.0 - p) / (1.0 - p);
+  return p == 1.0 ? math::log(d) : math::pow(d, 1.0 - p) / (1.0 - p);
 }
 
 // U(d) with dU/dd = |F(d)| (attraction positive) for the unclamped power law

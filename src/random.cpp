@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <string>
 
+#include "calder/detmath.hpp"
 #include "calder/error.hpp"
 
 namespace calder {
@@ -57,7 +58,7 @@ void reject_nan(double value, const char* where, const char* what) {
 }
 
 // p5's scaled_cosine: the blending weight 0.5 * (1 - cos(t * pi)).
-double scaled_cosine(double t) { return 0.5 * (1.0 - std::cos(t * pi)); }
+double scaled_cosine(double t) { return 0.5 * (1.0 - math::cos(t * pi)); }
 
 }  // namespace
 
@@ -111,7 +112,7 @@ double Random::random_gaussian(double mean, double sd) {
       x2 = random(2.0) - 1.0;
       w = x1 * x1 + x2 * x2;
     } while (w >= 1.0 || w == 0.0);
-    w = std::sqrt(-2.0 * std::log(w) / w);
+    w = std::sqrt(-2.0 * math::log(w) / w);
     y1 = x1 * w;
     spare_gaussian_ = x2 * w;
     has_spare_gaussian_ = true;

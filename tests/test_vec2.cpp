@@ -246,7 +246,7 @@ TEST(Vec2, Heading) {
   EXPECT_EQ((Vec2{-1.0, 0.0}).heading(), kPi);
   EXPECT_EQ((Vec2{0.0, -2.0}).heading(), -kPi / 2.0);
   EXPECT_EQ((Vec2{-1.0, 1.0}).heading(), 2.356194490192345);  // p5.js, 3 pi / 4
-  EXPECT_EQ((Vec2{3.0, 4.0}).heading(), std::atan2(4.0, 3.0));
+  EXPECT_EQ((Vec2{3.0, 4.0}).heading(), calder::math::atan2(4.0, 3.0));
 }
 
 TEST(Vec2, RotateKeepsLengthAndTurnsByTheAngle) {
@@ -261,11 +261,11 @@ TEST(Vec2, RotateKeepsLengthAndTurnsByTheAngle) {
 
   // p5's formula: (cos(heading + a) * len, sin(heading + a) * len).
   Vec2 w{1.5, -0.5};
-  const double heading = std::atan2(-0.5, 1.5);
+  const double heading = calder::math::atan2(-0.5, 1.5);
   const double len = std::sqrt(1.5 * 1.5 + 0.5 * 0.5);
   w.rotate(0.3);
-  EXPECT_EQ(w.x, std::cos(heading + 0.3) * len);
-  EXPECT_EQ(w.y, std::sin(heading + 0.3) * len);
+  EXPECT_EQ(w.x, calder::math::cos(heading + 0.3) * len);
+  EXPECT_EQ(w.y, calder::math::sin(heading + 0.3) * len);
 
   Vec2 unit{1.0, 0.0};
   unit.rotate(1.0);  // p5.js: new p5.Vector(1, 0).rotate(1)
@@ -285,8 +285,8 @@ TEST(Vec2, FromAngle) {
   EXPECT_NEAR(up.x, 0.0, 1e-16);
   EXPECT_EQ(up.y, 1.0);
   const Vec2 v = Vec2::from_angle(1.2, 3.0);
-  EXPECT_EQ(v.x, 3.0 * std::cos(1.2));
-  EXPECT_EQ(v.y, 3.0 * std::sin(1.2));
+  EXPECT_EQ(v.x, 3.0 * calder::math::cos(1.2));
+  EXPECT_EQ(v.y, 3.0 * calder::math::sin(1.2));
   // p5.js: p5.Vector.fromAngle(1.2, 3)
   EXPECT_DOUBLE_EQ(v.x, 1.0870732634300209);
   EXPECT_DOUBLE_EQ(v.y, 2.796117257901679);

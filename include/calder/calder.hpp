@@ -3,6 +3,7 @@
 // One include for everything public.
 #pragma once
 
+#include "calder/detmath.hpp"
 #include "calder/diagnostics.hpp"
 #include "calder/error.hpp"
 #include "calder/fields.hpp"

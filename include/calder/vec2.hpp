@@ -16,6 +16,7 @@
 
 #include <cmath>
 
+#include "calder/detmath.hpp"
 #include "calder/error.hpp"
 
 namespace calder {
@@ -71,8 +72,8 @@ struct Vec2 {
   Vec2& rotate(double angle) {
     const double new_heading = heading() + angle;
     const double len = mag();
-    x = std::cos(new_heading) * len;
-    y = std::sin(new_heading) * len;
+    x = math::cos(new_heading) * len;
+    y = math::sin(new_heading) * len;
     return *this;
   }
   // Moves toward v by the fraction amount (p5: x += (v.x - x) * amount).
@@ -91,7 +92,7 @@ struct Vec2 {
   [[nodiscard]] double mag() const { return std::sqrt(x * x + y * y); }
   [[nodiscard]] constexpr double mag_sq() const { return x * x + y * y; }
   // Angle of the vector in radians, atan2(y, x).
-  [[nodiscard]] double heading() const { return std::atan2(y, x); }
+  [[nodiscard]] double heading() const { return math::atan2(y, x); }
   [[nodiscard]] double dist(Vec2 v) const { return Vec2{v.x - x, v.y - y}.mag(); }
   [[nodiscard]] constexpr double dot(Vec2 v) const { return x * v.x + y * v.y; }
   // z component of the 3D cross product (x1*y2 - y1*x2).
@@ -102,7 +103,7 @@ struct Vec2 {
   // --- p5's static constructors ---
   // (length * cos(angle), length * sin(angle)).
   [[nodiscard]] static Vec2 from_angle(double angle, double length = 1.0) {
-    return {length * std::cos(angle), length * std::sin(angle)};
+    return {length * math::cos(angle), length * math::sin(angle)};
   }
   // A unit vector at a uniform random angle drawn from rng (defined in random.hpp).
   [[nodiscard]] static Vec2 random2d(Random& rng);

@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "barnes_hut_tree.hpp"
+#include "calder/detmath.hpp"
 
 #if defined(_OPENMP)
 #include <omp.h>
@@ -58,7 +59,7 @@ const Stencil& stencil() {
     Stencil t{};
     constexpr double kPi = 3.141592653589793;
     for (std::size_t i = 0; i < kStencil; ++i) {
-      t.u[i] = std::cos((2.0 * static_cast<double>(i) + 1.0) * kPi / (2.0 * kStencil));
+      t.u[i] = math::cos((2.0 * static_cast<double>(i) + 1.0) * kPi / (2.0 * kStencil));
     }
     for (std::size_t i = 0; i < kStencil; ++i) {
       double d = 1.0;

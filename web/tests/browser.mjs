@@ -13,7 +13,7 @@ import {join} from 'node:path';
 
 import {serve} from '../tools/serve.mjs';
 import {launch} from './chromium.mjs';
-import {check, done, kDiffersFromNative, kNative, kRoot, kSite, loadCore} from './module.mjs';
+import {check, done, kNative, kRoot, kSite, loadCore} from './module.mjs';
 
 const screenshotAt = process.argv.indexOf('--screenshot');
 const screenshotFile = screenshotAt > 0 ? process.argv[screenshotAt + 1] : null;
@@ -212,11 +212,10 @@ try {
     names.forEach((name, k) => {
       const run = spawnSync(kNative, ['run', name, '--seed', '1'], {encoding: 'utf8'});
       const native = /^state hash\s+([0-9a-f]{16})$/m.exec(run.stdout)[1];
-      const known = (kDiffersFromNative[name] || []).includes(1);
-      if ((webHashes[k] === native) === known) differ.push(`${name} (${webHashes[k]} vs ${native})`);
+      if (webHashes[k] !== native) differ.push(`${name} (${webHashes[k]} vs ${native})`);
     });
-    check(differ.length === 0, `in Chromium, every scene --seed 1 has native's hash (documented ` +
-          `exceptions apart)${differ.length ? ': ' + differ.join(', ') : ''}`);
+    check(differ.length === 0, `in Chromium, every scene --seed 1 has native's hash` +
+          `${differ.length ? ': ' + differ.join(', ') : ''}`);
   }
 
   // --- every scene, forces and velocities shown, without a console error ---

@@ -1,15 +1,17 @@
 // SPDX-License-Identifier: MIT
-// The WebAssembly module against the native command: for every built-in
-// scene and seeds 0, 1 and 42, the state hash after the scene's default
-// frames equals `calder run SCENE --seed S`'s (except the scenes listed in
-// module.mjs, with the reason); scripted mouse input as --mouse-pressed; and
-// bad input gives the command's own messages, as thrown JavaScript errors.
+// The WebAssembly module against the native command and the golden hashes:
+// for every built-in scene and seeds 0, 1 and 42, the state hash after the
+// scene's default frames equals `calder run SCENE --seed S`'s and the one
+// recorded in tests/golden/state_hashes.txt (calder's own sin, cos, atan2,
+// log and pow make them the same bits); scripted mouse input as
+// --mouse-pressed; and bad input gives the command's own messages, as thrown
+// JavaScript errors.
 import {execFileSync, spawnSync} from 'node:child_process';
-import {mkdtempSync, writeFileSync} from 'node:fs';
+import {mkdtempSync, readFileSync, writeFileSync} from 'node:fs';
 import {tmpdir} from 'node:os';
 import {join} from 'node:path';
 
-import {check, done, kDiffersFromNative, kNative, loadCore} from './module.mjs';
+import {check, done, kNative, kRoot, loadCore} from './module.mjs';
 
 const core = await loadCore();
 
@@ -42,23 +44,23 @@ const listed = execFileSync(kNative, ['list'], {encoding: 'utf8'})
 check(JSON.stringify(names) === JSON.stringify(listed),
       `the module's ${names.length} scenes are calder list's, in order`);
 
-// --- same numbers as native ---
-for (const name of names) {
-  for (const seed of [0, 1, 42]) {
-    const sim = new core.Simulation(name, {seed});
-    sim.step(sim.frames());
-    const web = sim.stateHash();
-    sim.delete();
-    const native = nativeHash([name, '--seed', String(seed)]);
-    const known = (kDiffersFromNative[name] || []).includes(seed);
-    if (known) {
-      check(web !== native,
-            `${name} --seed ${seed}: differs from native as documented (${web} vs ${native}); ` +
-            'if this fails they agree now: update kDiffersFromNative and docs/WEB.md');
-    } else {
-      check(web === native, `${name} --seed ${seed}: ${web} (native ${native})`);
-    }
-  }
+// --- same numbers as native, and as the golden file ---
+const golden = readFileSync(join(kRoot, 'tests/golden/state_hashes.txt'), 'utf8')
+  .split('\n')
+  .filter((line) => line && !line.startsWith('#'))
+  .map((line) => line.split(' '));
+check(JSON.stringify(golden.map(([name, seed]) => `${name} ${seed}`)) ===
+        JSON.stringify(names.flatMap((name) => [0, 1, 42].map((seed) => `${name} ${seed}`))),
+      `tests/golden/state_hashes.txt covers the ${names.length} scenes, seeds 0, 1 and 42`);
+for (const [name, seed, frames, recorded] of golden) {
+  const sim = new core.Simulation(name, {seed: Number(seed)});
+  check(sim.frames() === Number(frames), `${name}: ${frames} default frames`);
+  sim.step(Number(frames));
+  const web = sim.stateHash();
+  sim.delete();
+  const native = nativeHash([name, '--seed', seed]);
+  check(web === native && web === recorded,
+        `${name} --seed ${seed}: ${web} (native ${native}, golden ${recorded})`);
 }
 
 // Scripted input, as the command takes it: the wind of example 2.1.

@@ -23,17 +23,6 @@ export async function loadCore() {
   return core;
 }
 
-// Scenes whose state hash differs from native `calder run`, and why: the
-// C library's maths. Native calder uses glibc's sin, cos and pow (correctly
-// rounded in practice); the module uses Emscripten's musl versions, which
-// are off by one last bit for some arguments. exercise-2.16 draws each body's
-// direction with random2d (cos, sin): one bit in the start of a chaotic
-// hundred-body galaxy. exercise-2.13's law divides by pow(d, 4). docs/WEB.md.
-export const kDiffersFromNative = {
-  'exercise-2.13': [42],
-  'exercise-2.16': [0, 1, 42],
-};
-
 let failures = 0;
 export function check(ok, what) {
   if (ok) {
