@@ -476,7 +476,7 @@ void BarnesHut::Workspace::sum_group(const bh::Node& g, const bh::GroupFrame& f,
   // Float64 sums the Plummer law's opened leaves block by block where asked
   // (target_block; the clamped laws' body list also holds the accepted
   // nodes' point masses). Float32 pairs are cheap enough that the blocks'
-  // lists cost more than they save (0.91-0.97x, AVX2 and AVX-512).
+  // lists cost more than they save.
   const bool by_block =
       sizeof(T) == 8 && p.law == Law::plummer && target_block > 0 && count > target_block;
   const std::size_t far_rows = lists.far.size > 0 ? kStencil * kStencil : 0;

@@ -58,6 +58,18 @@ elseif(CASE STREQUAL "only")
   if(NOT at EQUAL -1)
     fail("--only movers printed the n-body table")
   endif()
+elseif(CASE STREQUAL "scaling")
+  # More threads than cores: the work columns still come from the counters.
+  calder_run(--quick --only scaling --threads 1,2,3)
+  if(NOT rc EQUAL 0)
+    fail("expected exit 0")
+  endif()
+  expect_contains("${out}" "scaling with the thread count" "speedup" "efficiency"
+                  "work imbalance" "Barnes-Hut, float64" "rain (calder::bulk), book"
+                  "the scaling table ran 1, 2, 3 thread(s)")
+elseif(CASE STREQUAL "bad_threads")
+  calder_run(--quick --only scaling --threads 1,0)
+  expect_error(2 CONTAINS "--threads" "1,0")
 elseif(CASE STREQUAL "bad_format")
   calder_run(--quick --format xml)
   expect_error(2 CONTAINS "--format" "xml")
