@@ -188,8 +188,10 @@ struct BarnesHutStats {
 // harmonic) and the bodies' direct pulls for the whole group, float32 lists
 // relative to the group's centre. Nodes far from a group (beyond 2.8 / theta
 // of its half sides) are summed at 4 x 4 points of its square and
-// interpolated: an error below the expansion's at any theta. Groups are
-// handed to threads dynamically; each body's sum is still computed by one
+// interpolated: an error below the expansion's at any theta. The build runs
+// in one parallel region; the walk hands each thread a run of groups of
+// equal cost (the interactions the solver's last call measured for those
+// bodies; by bodies on a first call). Each body's sum is computed by one
 // thread in a fixed order, so results do not depend on the thread count.
 // One solver serves one caller at a time.
 class BarnesHut {
