@@ -3,6 +3,7 @@
 // calder/nbody.hpp for the algorithm and its guarantees). This file checks
 // the options and runs the steps, each in its own file (barnes_hut_tree.hpp):
 // build, multipole terms, walk; then the sums go back to the caller's order.
+#include <algorithm>
 #include <chrono>
 #include <cstddef>
 #include <cstdint>
@@ -63,29 +64,16 @@ const BarnesHutStats& BarnesHut::stats() const {
 
 // Thread t's part of (ax, ay) += factor * the sums, from Morton order back
 // to the caller's (a permutation: no two ranks write one body). The writes
-// land at random: a team splits by component first (the first half of its
-// threads writes ax, the others ay, each over slices of the ranks), so that
-// two threads rarely write one cache line.
+// land at random: the team splits the 2n writes (ax's ranks, then ay's) in
+// equal slices, so that each thread writes one component over a run of
+// ranks (two at most) and two threads rarely write one cache line.
 void BarnesHut::Workspace::scatter_share(std::size_t t, std::size_t nt, double factor,
                                          std::span<double> ax, std::span<double> ay) {
   const std::size_t n = order.size();
-  const auto add = [&](const std::vector<double>& sum, std::span<double> out, std::size_t lo,
-                       std::size_t hi) {
-    for (std::size_t u = lo; u < hi; ++u) out[order[u]] += factor * sum[u];
-  };
-  const std::size_t half = nt / 2;
-  if (half == 0) {
-    add(sum_x, ax, 0, n);
-    add(sum_y, ay, 0, n);
-    work[bh::kRegionScatter * nt + t] = n;
-    return;
-  }
-  const bool x = t < half;
-  const std::size_t k = x ? t : t - half;
-  const std::size_t slices = x ? half : nt - half;
-  const std::size_t lo = n * k / slices;
-  const std::size_t hi = n * (k + 1) / slices;
-  add(x ? sum_x : sum_y, x ? ax : ay, lo, hi);
+  const std::size_t lo = 2 * n * t / nt;
+  const std::size_t hi = 2 * n * (t + 1) / nt;
+  for (std::size_t u = lo; u < std::min(hi, n); ++u) ax[order[u]] += factor * sum_x[u];
+  for (std::size_t u = std::max(lo, n); u < hi; ++u) ay[order[u - n]] += factor * sum_y[u - n];
   work[bh::kRegionScatter * nt + t] = hi - lo;
 }
 
