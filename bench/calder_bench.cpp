@@ -6,7 +6,7 @@
 //
 //   calder-bench                                    the full run (a few minutes)
 //   calder-bench --quick                            tiny sizes, a few seconds
-//   calder-bench --only movers --format markdown --output movers.md
+//   calder-bench --only bulk --format markdown --output bulk.md
 //
 // Exit status: 0 success, 1 a write failed, 2 bad usage; every error is one
 // line on stderr, "calder-bench: <message>".

@@ -309,15 +309,18 @@ TEST(NbodyDirect, AddsToTheAccelerationsGiven) {
 
 TEST(NbodyDirect, ResultsAreBitIdenticalForAnyThreadCount) {
   // Sizes that leave partial register blocks and uneven thread shares, and
-  // one summed each pair once (9 stripes: a bye each round, see below).
-  for (const std::size_t n : {std::size_t{37}, std::size_t{1001}, std::size_t{4300}}) {
+  // two summed each pair once (9 stripes: one idle each round; 18 stripes),
+  // on 1, 2, 3, 7 and 16 threads (more threads than cores is fine: the
+  // tasks and their order do not depend on timing).
+  for (const std::size_t n :
+       {std::size_t{37}, std::size_t{1001}, std::size_t{4300}, std::size_t{9000}}) {
     const System s = clusters(n, 8);
     for (nb::Options o : laws()) {
       for (const nb::Precision p : {nb::Precision::float64, nb::Precision::float32}) {
         o.precision = p;
         o.threads = 1;
         const Field one = direct(s, o);
-        for (const int threads : {2, 3, 4}) {
+        for (const int threads : {2, 3, 7, 16}) {
           o.threads = threads;
           EXPECT_TRUE(bit_identical(one, direct(s, o)))
               << name_of(o) << (p == nb::Precision::float32 ? " float32" : " float64") << " N " << n
@@ -674,21 +677,87 @@ TEST(NbodyBarnesHut, TwoBodiesPullEachOtherEquallyAndOppositely) {
 }
 
 TEST(NbodyBarnesHut, ResultsAreBitIdenticalForAnyThreadCount) {
-  const System s = clusters(2000, 17);
-  for (const auto& [p, block] :
-       {std::pair{nb::Precision::float64, 0}, std::pair{nb::Precision::float64, 16},
-        std::pair{nb::Precision::float32, 0}}) {
+  // Clumps at the size where threads start, and a disk large enough that
+  // every thread of 16 gets several sort ranges, subtrees and units.
+  for (const System& s : {clusters(2000, 17), disk(30000, 18, 50.0 * std::sqrt(30.0))}) {
+    for (const auto& [p, block] :
+         {std::pair{nb::Precision::float64, 0}, std::pair{nb::Precision::float64, 16},
+          std::pair{nb::Precision::float32, 0}}) {
+      nb::BarnesHutOptions b;
+      static_cast<nb::Options&>(b) = plummer(kSoftening);
+      b.precision = p;
+      b.target_block = block;
+      b.threads = 1;
+      const Field one = barnes_hut(s, b);
+      for (const int threads : {2, 3, 7, 16}) {
+        b.threads = threads;
+        EXPECT_TRUE(bit_identical(one, barnes_hut(s, b)))
+            << "N " << s.size() << ", threads " << threads << ", target_block " << block;
+      }
+    }
+  }
+}
+
+// The per-thread work of every parallel region (BarnesHutStats::work,
+// DirectStats): the counts add up to the whole, and at 16 threads each
+// thread's share is within 5% of the mean, from counts that do not depend
+// on timing (so a 2-core machine checks a 16-thread decomposition).
+double worst_imbalance(const std::vector<nb::ThreadWork>& work, std::size_t threads,
+                       std::string& where) {
+  double worst = 0.0;
+  for (const nb::ThreadWork& w : work) {
+    EXPECT_EQ(w.per_thread.size(), threads) << w.region;
+    if (w.imbalance() > worst) {
+      worst = w.imbalance();
+      where = w.region;
+    }
+  }
+  return worst;
+}
+
+TEST(NbodyWork, DirectPairsAreSharedEvenlyAmongSixteenThreads) {
+  for (const std::size_t n : {std::size_t{20000}, std::size_t{40000}}) {
+    const System s = disk(n, 41);
+    nb::Options o = plummer(1.0);
+    o.threads = 16;
+    Field f{std::vector<double>(n), std::vector<double>(n)};
+    nb::DirectStats stats;
+    nb::direct_accelerations(s.x, s.y, s.m, f.ax, f.ay, o, &stats);
+    ASSERT_EQ(stats.work.size(), 1u);
+    EXPECT_TRUE(stats.pairs_once);
+    // Pairs once: every pair of the padded bodies counted, both ways.
+    std::uint64_t total = 0;
+    for (const std::uint64_t w : stats.work[0].per_thread) total += w;
+    const std::uint64_t padded = (n + 63) / 64 * 64;  // whole vectors (of at most 64 bodies)
+    EXPECT_GE(total, std::uint64_t{n} * n);
+    EXPECT_LE(total, padded * padded);
+    std::string where;
+    EXPECT_LE(worst_imbalance(stats.work, 16, where), 0.05) << "N " << n;
+  }
+}
+
+TEST(NbodyWork, BarnesHutRegionsAreSharedEvenlyAmongSixteenThreads) {
+  // The walk's split follows the interactions the last call measured: the
+  // second call is balanced.
+  for (const System& s : {disk(200000, 42, 50.0 * std::sqrt(200.0)), clusters(200000, 43)}) {
     nb::BarnesHutOptions b;
     static_cast<nb::Options&>(b) = plummer(kSoftening);
-    b.precision = p;
-    b.target_block = block;
-    b.threads = 1;
-    const Field one = barnes_hut(s, b);
-    for (const int threads : {2, 3}) {
-      b.threads = threads;
-      EXPECT_TRUE(bit_identical(one, barnes_hut(s, b)))
-          << "threads " << threads << ", target_block " << block;
+    b.precision = nb::Precision::float32;
+    b.threads = 16;
+    nb::BarnesHut solver;
+    Field f{std::vector<double>(s.size()), std::vector<double>(s.size())};
+    solver.accelerations(s.x, s.y, s.m, f.ax, f.ay, b);
+    solver.accelerations(s.x, s.y, s.m, f.ax, f.ay, b);
+    const nb::BarnesHutStats& stats = solver.stats();
+    std::uint64_t interactions = 0;
+    for (const nb::ThreadWork& w : stats.work) {
+      if (std::string(w.region) == "walk") {
+        for (const std::uint64_t i : w.per_thread) interactions += i;
+      }
     }
+    EXPECT_EQ(interactions, stats.interactions);
+    std::string where;
+    EXPECT_LE(worst_imbalance(stats.work, 16, where), 0.05) << "N " << s.size() << ": " << where;
   }
 }
 

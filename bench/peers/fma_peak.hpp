@@ -19,14 +19,12 @@ namespace calder::peers {
 //   float64, avx2: float's rsqrt estimate (2 conversions) + 3 Newton steps:
 //                                              2 sub, 7 FMA, 1 rsqrt, 2 cvt, 10 mul = 29
 //   float64, sse2: sqrt + div:                 2 sub, 4 FMA, 1 sqrt, 1 mul, 1 div = 13
-// (A floor of the instructions the kernel runs: avx2's float64 kernels ran the
-// 13 of sqrt + div until the divider, not the FMAs, proved their bound.)
-// Since issue 9 the avx512 kernels take r^-3 from the estimate with one
+// The kernels now do less: the avx512 kernels take r^-3 from the estimate with one
 // series correction (src/nbody/kernels.cpp, cube_scaled): float32 2 sub,
 // 5 FMA, 1 rsqrt, 4 mul = 17; float64 one Newton step, 2 sub, 6 FMA, 1 rsqrt,
 // 6 mul = 21; the avx2 float64 kernels one Newton step and a second-order
 // series: 2 sub, 8 FMA, 1 rsqrt, 2 cvt, 5 mul = 26. The floors keep 18, 23
-// and 29, the counts issue 9's targets were set against: a fixed yardstick
+// and 29, the counts the targets were set against: a fixed yardstick
 // (with the kernels' own counts the shares read 17/18, 21/23 and 26/29 of
 // what the tables show).
 inline constexpr double kFlopsPerPair32 = 18.0;

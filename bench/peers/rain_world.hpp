@@ -2,7 +2,7 @@
 // The movers benchmark's worlds: the built-in scene "rain" (scenes/rain.toml)
 // with N drops on a canvas grown with N so that the density stays that of
 // the scene (1000 drops on 640 x 240), and Box2D running the same bodies.
-// One definition for bench_movers, `calder bench` and their tests.
+// One definition for bench_bulk, `calder bench` and their tests.
 #pragma once
 
 #include <cstddef>

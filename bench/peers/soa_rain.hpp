@@ -5,7 +5,7 @@
 // arrays per step, branch-free, compiled with -O3 -march=native -ffast-math
 // (soa_rain_loop.cpp; a second copy with -mavx2 -mfma for the AVX2 column).
 // Not calder code: what calder::bulk must at least match.
-// One definition for bench_movers, `calder bench` and their tests.
+// One definition for bench_bulk, `calder bench` and their tests.
 #pragma once
 
 #include <cstddef>

@@ -43,6 +43,7 @@
 
 #include <cstddef>
 #include <string>
+#include <vector>
 
 #include "calder/world.hpp"
 
@@ -69,5 +70,11 @@ const char* kernel_name();
 
 // The number of threads that threads = 0 means (1 without OpenMP).
 int max_threads();
+
+// The tiles each thread ran in the calling thread's last step_batch, by
+// thread (the team's size). Tiles go to threads in equal contiguous slices,
+// decided by the thread count alone: the counts show the balance of any
+// thread count on any machine.
+std::vector<std::size_t> last_batch_tiles();
 
 }  // namespace calder::bulk

@@ -42,6 +42,7 @@
 #include <cstdint>
 #include <memory>
 #include <span>
+#include <vector>
 
 #include "calder/backends.hpp"
 #include "calder/fields.hpp"
@@ -81,6 +82,27 @@ struct Options {
   int threads = 0;
 };
 
+// The work each thread of one parallel region did, in the region's unit
+// (pairs, interactions, bodies, keys, nodes). Work is handed to threads by
+// rules that depend on the thread count alone (static slices, fixed cyclic or
+// greedy assignments), never on timing, so these counts are the same on any
+// machine: a 2-core machine running 16 threads sees the balance of a 16-core
+// run.
+struct ThreadWork {
+  const char* region = "";
+  const char* unit = "";
+  std::vector<std::uint64_t> per_thread;
+  // max / mean - 1 (0: perfectly balanced; 0 when there is no work).
+  double imbalance() const;
+};
+
+// What a direct_accelerations call did, when asked for.
+struct DirectStats {
+  std::size_t bodies = 0;
+  bool pairs_once = false;  // each pair evaluated once for both bodies
+  std::vector<ThreadWork> work;
+};
+
 // The options for a calder::AttractionLaw (its G, clamp, bounds, softening).
 // Throws calder::Error for the laws without a kernel: a custom law, an
 // exponent other than 2, a repulsive core. (MassProduct, the grouping of
@@ -88,9 +110,10 @@ struct Options {
 Options options_for(const AttractionLaw& law);
 
 // O(n^2) direct summation, vectorised and threaded: (ax, ay) += accelerations.
+// stats, when given, receives the per-thread work (pairs evaluated).
 void direct_accelerations(std::span<const double> x, std::span<const double> y,
                           std::span<const double> mass, std::span<double> ax, std::span<double> ay,
-                          const Options& options = {});
+                          const Options& options = {}, DirectStats* stats = nullptr);
 
 // The specification: plain loops in double, one pair at a time, sources in
 // index order (options.precision and options.threads are ignored).
@@ -120,7 +143,7 @@ struct BarnesHutOptions : Options {
   // at 0.7: 5.9e-4, 7.7e-4, 7.2e-4, 6.9e-4, 9.2e-4 (2000 to 2 x 10^6).
   // Clumps: 1.1e-4 at 0.7 (10^4). With multipoles
   // to fourth order it falls about as theta^5. The bodies of weak pull (near
-  // a disk's centre) carry most of it (docs/PERFORMANCE.md, issue 9 part 7).
+  // a disk's centre) carry most of it.
   // The clamped laws sum monopoles only: their error at 0.7 is about 1e-2
   // (4e-3 at 0.45, 2e-3 at 0.3; N = 20,000 disk).
   double theta = kDefaultTheta;
@@ -130,10 +153,9 @@ struct BarnesHutOptions : Options {
   // bodies; each run of this many of its targets (in Morton order, a compact
   // patch) then takes as multipoles those leaves that its own box accepts.
   // Fewer pairs, a little more error (N = 10^6 disk: RMS 6.4e-4 -> 6.9e-4).
-  // -1: the kernels' choice, kernel_target_block() (16 with AVX2, where it
-  // gains 1.13x a step; 0 with AVX-512, where it gains nothing;
-  // docs/PERFORMANCE.md, issue 9 part 9); 0: never. Float32 and the clamped
-  // laws ignore it.
+  // -1: the kernels' choice, kernel_target_block() (16 with AVX2, where the
+  // saved pairs outweigh the extra tests; 0 with AVX-512, where they do not);
+  // 0: never. Float32 and the clamped laws ignore it.
   int target_block = -1;
 };
 
@@ -146,7 +168,9 @@ struct BarnesHutStats {
   std::uint64_t interactions = 0;       // target-source pairs evaluated (nodes and bodies)
   std::uint64_t node_interactions = 0;  // of which with nodes (multipole expansions)
   double build_seconds = 0.0;           // bounding box, Morton sort, tree, moments
-  double walk_seconds = 0.0;            // tree walks and pair sums
+  double walk_seconds = 0.0;            // tree walks, pair sums, back to the caller's order
+  // Per parallel region of the build and the walk, each thread's work.
+  std::vector<ThreadWork> work;
 };
 
 // A Barnes-Hut solver that keeps its tree and buffers between calls (the
@@ -164,8 +188,10 @@ struct BarnesHutStats {
 // harmonic) and the bodies' direct pulls for the whole group, float32 lists
 // relative to the group's centre. Nodes far from a group (beyond 2.8 / theta
 // of its half sides) are summed at 4 x 4 points of its square and
-// interpolated: an error below the expansion's at any theta. Groups are
-// handed to threads dynamically; each body's sum is still computed by one
+// interpolated: an error below the expansion's at any theta. The build runs
+// in one parallel region; the walk hands each thread a run of groups of
+// equal cost (the interactions the solver's last call measured for those
+// bodies; by bodies on a first call). Each body's sum is computed by one
 // thread in a fixed order, so results do not depend on the thread count.
 // One solver serves one caller at a time.
 class BarnesHut {

@@ -53,6 +53,12 @@ std::size_t first_non_finite(const BodyColumnsOf<std::span<double>, std::span<co
   return first + i;
 }
 
+// The calling thread's record of its last batch's tiles per thread.
+std::vector<std::size_t>& caller_tiles() {
+  thread_local std::vector<std::size_t> tiles;
+  return tiles;
+}
+
 }  // namespace
 
 bool step_batch(const StepBatch& batch, std::string* why_not) {
@@ -95,13 +101,25 @@ bool step_batch(const StepBatch& batch, std::string* why_not) {
     if (i < first + count) bad[static_cast<std::size_t>(t)] = i;
   };
   // Tiles are independent: which thread runs one changes no bit of it.
+  // Thread t of nt runs tiles [tiles t / nt, tiles (t + 1) / nt).
+  std::vector<std::size_t>& per_thread = caller_tiles();
+  per_thread.assign(static_cast<std::size_t>(threads), 0);
 #if defined(_OPENMP)
-#pragma omp parallel for schedule(static) num_threads(threads) if (threads > 1)
-  for (long long t = 0; t < tiles; ++t) run_tile(t);
-#else
-  (void)threads;
-  for (long long t = 0; t < tiles; ++t) run_tile(t);
+#pragma omp parallel num_threads(threads) if (threads > 1)
 #endif
+  {
+#if defined(_OPENMP)
+    const auto t = static_cast<long long>(omp_get_thread_num());
+    const auto nt = static_cast<long long>(omp_get_num_threads());
+#else
+    const long long t = 0;
+    const long long nt = 1;
+#endif
+    const long long first = tiles * t / nt;
+    const long long last = tiles * (t + 1) / nt;
+    for (long long k = first; k < last; ++k) run_tile(k);
+    per_thread[static_cast<std::size_t>(t)] = static_cast<std::size_t>(last - first);
+  }
   if (batch.first_non_finite != nullptr) {
     *batch.first_non_finite = n;
     for (const std::size_t i : bad) {
@@ -127,6 +145,8 @@ std::string unsupported(const World& world) {
 }
 
 const char* kernel_name() { return detail::kernels().name; }
+
+std::vector<std::size_t> last_batch_tiles() { return caller_tiles(); }
 
 int max_threads() {
 #if defined(_OPENMP)

@@ -3,6 +3,7 @@
 // calder/nbody.hpp for the algorithm and its guarantees). This file checks
 // the options and runs the steps, each in its own file (barnes_hut_tree.hpp):
 // build, multipole terms, walk; then the sums go back to the caller's order.
+#include <algorithm>
 #include <chrono>
 #include <cstddef>
 #include <cstdint>
@@ -49,45 +50,6 @@ void check_options(const char* where, std::size_t n, const BarnesHutOptions& opt
   }
 }
 
-// (ax, ay) += factor * the sums, from Morton order back to the caller's (a
-// permutation: no two ranks write one body). The writes land at random: a
-// team splits by component first (the first half of its threads writes ax,
-// the others ay, each over slices of the ranks), so that two threads never
-// write one cache line (2 threads: 0.2 ms against 0.6 ms at 10^5 bodies,
-// where one thread takes 0.3 ms).
-void scatter(const std::vector<std::uint32_t>& order, const std::vector<double>& sum_x,
-             const std::vector<double>& sum_y, double factor, std::span<double> ax,
-             std::span<double> ay, [[maybe_unused]] int team) {
-  const auto n = static_cast<std::int64_t>(order.size());
-  const auto add = [&](const std::vector<double>& sum, std::span<double> out, std::int64_t lo,
-                       std::int64_t hi) {
-    for (auto u = static_cast<std::size_t>(lo); u < static_cast<std::size_t>(hi); ++u) {
-      out[order[u]] += factor * sum[u];
-    }
-  };
-  // Thread t of `threads`: its slice of ax or of ay (one thread: both).
-  const auto share = [&](int threads, int t) {
-    const int half = threads / 2;
-    if (half == 0) {
-      add(sum_x, ax, 0, n);
-      add(sum_y, ay, 0, n);
-      return;
-    }
-    const bool x = t < half;
-    const int k = x ? t : t - half;
-    const int slices = x ? half : threads - half;
-    add(x ? sum_x : sum_y, x ? ax : ay, n * k / slices, n * (k + 1) / slices);
-  };
-#if defined(_OPENMP)
-  if (team > 1) {
-#pragma omp parallel num_threads(team)
-    share(omp_get_num_threads(), omp_get_thread_num());
-    return;
-  }
-#endif
-  share(1, 0);
-}
-
 }  // namespace
 
 BarnesHut::BarnesHut() : workspace_(std::make_unique<Workspace>()) {}
@@ -98,6 +60,21 @@ BarnesHut& BarnesHut::operator=(BarnesHut&&) noexcept = default;
 const BarnesHutStats& BarnesHut::stats() const {
   static const BarnesHutStats empty;
   return workspace_ ? workspace_->stats : empty;
+}
+
+// Thread t's part of (ax, ay) += factor * the sums, from Morton order back
+// to the caller's (a permutation: no two ranks write one body). The writes
+// land at random: the team splits the 2n writes (ax's ranks, then ay's) in
+// equal slices, so that each thread writes one component over a run of
+// ranks (two at most) and two threads rarely write one cache line.
+void BarnesHut::Workspace::scatter_share(std::size_t t, std::size_t nt, double factor,
+                                         std::span<double> ax, std::span<double> ay) {
+  const std::size_t n = order.size();
+  const std::size_t lo = 2 * n * t / nt;
+  const std::size_t hi = 2 * n * (t + 1) / nt;
+  for (std::size_t u = lo; u < std::min(hi, n); ++u) ax[order[u]] += factor * sum_x[u];
+  for (std::size_t u = std::max(lo, n); u < hi; ++u) ay[order[u - n]] += factor * sum_y[u - n];
+  work[bh::kRegionScatter * nt + t] = hi - lo;
 }
 
 void BarnesHut::accelerations(std::span<const double> x, std::span<const double> y,
@@ -113,7 +90,6 @@ void BarnesHut::accelerations(std::span<const double> x, std::span<const double>
   w.stats.bodies = n;
   if (n < 2) return;
   const int threads = detail::thread_count(options);
-  const int team = bh::team_for(n, threads);
 
   const Clock::time_point t0 = Clock::now();
   w.leaf_size = static_cast<std::size_t>(options.leaf_size);
@@ -121,18 +97,14 @@ void BarnesHut::accelerations(std::span<const double> x, std::span<const double>
   w.target_block = static_cast<std::size_t>(options.target_block < 0 ? kernel_target_block()
                                                                      : options.target_block);
   w.inv_theta = options.theta > 0.0 ? 1.0 / options.theta : std::numeric_limits<double>::infinity();
-  w.build(x, y, mass, threads);
-  const detail::FloatFrame frame = detail::float_frame(w.x0 + w.side * 0.5, w.y0 + w.side * 0.5,
-                                                       w.side * 0.5, w.max_mass, options.G);
-  const bool float32 = options.precision == Precision::float32;
-  w.prepare_kernel_inputs(frame, float32, team);
+  w.single = options.precision == Precision::float32;
+  w.build(x, y, mass, threads, options.G);
   w.stats.build_seconds = seconds_since(t0);
 
   const Clock::time_point t1 = Clock::now();
-  detail::LawParams p = detail::law_params(options, frame);
+  detail::LawParams p = detail::law_params(options, w.frame);
   p.float_range = detail::float_range_of(w.side, p.eps2);
-  w.walk(p, frame.scale, float32, threads);
-  scatter(w.order, w.sum_x, w.sum_y, float32 ? frame.factor : options.G, ax, ay, team);
+  w.walk(p, w.frame.scale, threads, w.single ? w.frame.factor : options.G, ax, ay);
   w.stats.walk_seconds = seconds_since(t1);
 
   w.stats.nodes = w.tree.nodes.size();
@@ -142,6 +114,12 @@ void BarnesHut::accelerations(std::span<const double> x, std::span<const double>
   for (const auto& s : w.scratch) {
     w.stats.interactions += s.interactions;
     w.stats.node_interactions += s.node_interactions;
+  }
+  const auto team = static_cast<std::size_t>(w.team);
+  for (std::size_t r = 0; r < bh::kRegions; ++r) {
+    const std::uint64_t* first = w.work.data() + r * team;
+    w.stats.work.push_back(ThreadWork{bh::kRegionNames[r][0], bh::kRegionNames[r][1],
+                                      std::vector<std::uint64_t>(first, first + team)});
   }
 }
 

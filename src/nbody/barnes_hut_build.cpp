@@ -145,50 +145,60 @@ void sort_in_cache(SortRun from, SortRun spare, SortRun out, std::size_t length,
 
 }  // namespace
 
+// The whole build, one parallel region: the bounding square; Morton codes
+// and the team's radix passes over static slices; the sort's ranges, each
+// sorted and gathered by one thread; the top of the tree (serially, small);
+// subtrees by their threads; their nodes placed and their kernel moments
+// written by the same threads; the top finished. Ranges and subtrees go to
+// threads by assign_greedy, which depends on sizes and the thread count only.
 void BarnesHut::Workspace::build(std::span<const double> x, std::span<const double> y,
-                                 std::span<const double> mass, int threads) {
-  const int team = bh::team_for(x.size(), threads);
-  bound(x, y, team);
-  sort_bodies(x, y, mass, team);
-  build_tree(team);
-}
-
-// The root square: the bounding box's lower corner and its larger side.
-void BarnesHut::Workspace::bound(std::span<const double> x, std::span<const double> y,
-                                 [[maybe_unused]] int team) {
-  double xmin = x[0];
-  double xmax = x[0];
-  double ymin = y[0];
-  double ymax = y[0];
-  const auto count = static_cast<std::ptrdiff_t>(x.size());
-#if defined(_OPENMP)
-#pragma omp parallel for schedule(static) num_threads(team) reduction(min           \
-                                                                      : xmin, ymin) \
-    reduction(max                                                                   \
-              : xmax, ymax)
-#endif
-  for (std::ptrdiff_t i = 0; i < count; ++i) {
-    const auto u = static_cast<std::size_t>(i);
-    xmin = std::min(xmin, x[u]);
-    xmax = std::max(xmax, x[u]);
-    ymin = std::min(ymin, y[u]);
-    ymax = std::max(ymax, y[u]);
-  }
-  x0 = xmin;
-  y0 = ymin;
-  side = std::max(xmax - xmin, ymax - ymin);
-  if (!(side > 0.0)) side = 1.0;  // one point (or one body)
-}
-
-// Morton keys, their sort, and the bodies gathered in Morton order.
-void BarnesHut::Workspace::sort_bodies(std::span<const double> x, std::span<const double> y,
-                                       std::span<const double> mass, [[maybe_unused]] int team) {
+                                 std::span<const double> mass, int threads, double G) {
   const std::size_t n = x.size();
-  const double to_cell = static_cast<double>(kCells) / side;
-  const auto quantise = [&](double v, double origin) {
-    const double c = (v - origin) * to_cell;  // >= 0
-    return c >= static_cast<double>(kCells - 1) ? kCells - 1 : static_cast<std::uint32_t>(c);
-  };
+  team = bh::team_for(n, threads);
+  size_buffers(n);
+#if defined(_OPENMP)
+#pragma omp parallel num_threads(team)
+#endif
+  {
+    const Slice s = my_slice(n);
+    bound(x, y, mass, s.t, s.nt);
+#if defined(_OPENMP)
+#pragma omp barrier
+#endif
+    const bh::Square square = combine_bounds(s.nt);
+    morton(x, y, square, s.t, s.nt);
+    if (s.t == 0) {  // read after the sort's barriers
+      x0 = square.x0;
+      y0 = square.y0;
+      side = square.side;
+      max_mass = square.max_mass;
+    }
+    sort_keys(s.t, s.nt);
+    sort_own_ranges(x, y, mass, s.t);
+#if defined(_OPENMP)
+#pragma omp barrier
+#pragma omp single
+#endif
+    plan_tree(G);
+    build_own_parts(s.t);
+#if defined(_OPENMP)
+#pragma omp barrier
+#pragma omp single
+#endif
+    place_parts();
+    copy_own_parts(s.t);
+#if defined(_OPENMP)
+#pragma omp barrier
+#pragma omp single
+#endif
+    finish_top();
+  }
+}
+
+// The buffers' sizes for n bodies and the team (grown, never shrunk in
+// capacity: a solver called every step allocates once).
+void BarnesHut::Workspace::size_buffers(std::size_t n) {
+  const auto nt = static_cast<std::size_t>(team);
   keys.resize(n);
   keys_tmp.resize(n);
   order.resize(n);
@@ -196,60 +206,127 @@ void BarnesHut::Workspace::sort_bodies(std::span<const double> x, std::span<cons
   sx.resize(n);
   sy.resize(n);
   sm.resize(n);
-  radix_counts.resize(static_cast<std::size_t>(team) * bh::kRadixBuckets);
-  if (sort_scratch.size() < static_cast<std::size_t>(team)) {
-    sort_scratch.resize(static_cast<std::size_t>(team));
-  }
+  if (single) sm32.resize(n);
+  radix_counts.resize(nt * bh::kRadixBuckets);
+  if (sort_scratch.size() < nt) sort_scratch.resize(nt);
+  own_ranges.resize(nt);
+  own_parts.resize(nt);
+  partial.assign(5 * nt, 0.0);
+  work.assign(bh::kRegions * nt, 0);
+  team_split_from =
+      std::min(bh::kSortInCache, std::max(n / (nt * bh::kRangesPerThread), bh::kMinTeamSplit));
+  sort_large.assign(1, bh::SortRange{0, static_cast<std::uint32_t>(n), bh::kRadixDigits, false});
+  sort_small.clear();
+}
+
+// Thread t's share of the bounding box and of the heaviest mass.
+void BarnesHut::Workspace::bound(std::span<const double> x, std::span<const double> y,
+                                 std::span<const double> mass, std::size_t t, std::size_t nt) {
+  const std::size_t n = x.size();
+  const std::size_t lo = n * t / nt;
+  const std::size_t hi = n * (t + 1) / nt;
+  double xmin = x[lo];
+  double xmax = x[lo];
+  double ymin = y[lo];
+  double ymax = y[lo];
   double heaviest = 0.0;
-#if defined(_OPENMP)
-#pragma omp parallel num_threads(team) reduction(max : heaviest)
-#endif
-  {
-    const Slice s = my_slice(n);
-    for (std::size_t i = s.lo; i < s.hi; ++i) {
-      keys[i] = spread(quantise(x[i], x0)) | (spread(quantise(y[i], y0)) << 1);
-      order[i] = static_cast<std::uint32_t>(i);
-    }
-    sort_keys(s.t, s.nt);
-    for (std::size_t r = s.lo; r < s.hi; ++r) {
-      const std::uint32_t i = order[r];
-      sx[r] = x[i];
-      sy[r] = y[i];
-      sm[r] = mass[i];
-      heaviest = std::max(heaviest, mass[i]);
-    }
+  for (std::size_t i = lo; i < hi; ++i) {
+    xmin = std::min(xmin, x[i]);
+    xmax = std::max(xmax, x[i]);
+    ymin = std::min(ymin, y[i]);
+    ymax = std::max(ymax, y[i]);
+    heaviest = std::max(heaviest, mass[i]);
   }
-  max_mass = heaviest;
+  double* p = partial.data() + 5 * t;
+  p[0] = xmin;
+  p[1] = xmax;
+  p[2] = ymin;
+  p[3] = ymax;
+  p[4] = heaviest;
+}
+
+// The root square from the threads' boxes: the lower corner and the larger
+// side (min and max are exact: the same for any split), and the heaviest
+// mass. Every thread works it out for itself.
+bh::Square BarnesHut::Workspace::combine_bounds(std::size_t nt) const {
+  double xmin = partial[0];
+  double xmax = partial[1];
+  double ymin = partial[2];
+  double ymax = partial[3];
+  double heaviest = partial[4];
+  for (std::size_t t = 1; t < nt; ++t) {
+    const double* p = partial.data() + 5 * t;
+    xmin = std::min(xmin, p[0]);
+    xmax = std::max(xmax, p[1]);
+    ymin = std::min(ymin, p[2]);
+    ymax = std::max(ymax, p[3]);
+    heaviest = std::max(heaviest, p[4]);
+  }
+  double larger = std::max(xmax - xmin, ymax - ymin);
+  if (!(larger > 0.0)) larger = 1.0;  // one point (or one body)
+  return bh::Square{xmin, ymin, larger, heaviest};
+}
+
+// Thread t's slice of the Morton keys (the same slice as its first radix pass).
+void BarnesHut::Workspace::morton(std::span<const double> x, std::span<const double> y,
+                                  const bh::Square& square, std::size_t t, std::size_t nt) {
+  const std::size_t n = x.size();
+  const std::size_t lo = n * t / nt;
+  const std::size_t hi = n * (t + 1) / nt;
+  const double to_cell = static_cast<double>(kCells) / square.side;
+  const auto quantise = [&](double v, double origin) {
+    const double c = (v - origin) * to_cell;  // >= 0
+    return c >= static_cast<double>(kCells - 1) ? kCells - 1 : static_cast<std::uint32_t>(c);
+  };
+  for (std::size_t i = lo; i < hi; ++i) {
+    keys[i] = spread(quantise(x[i], square.x0)) | (spread(quantise(y[i], square.y0)) << 1);
+    order[i] = static_cast<std::uint32_t>(i);
+  }
+  work[bh::kRegionBodies * nt + t] += hi - lo;
+}
+
+// Thread t's ranges (sorted by their keys' order, then gathered: the bodies
+// in Morton order).
+void BarnesHut::Workspace::sort_own_ranges(std::span<const double> x, std::span<const double> y,
+                                           std::span<const double> mass, std::size_t t) {
+  std::uint64_t done = 0;
+  for (const std::uint32_t r : own_ranges[t]) {
+    const bh::SortRange& range = sort_small[r];
+    sort_range(range, sort_scratch[t]);
+    for (std::uint32_t k = range.begin; k < range.end; ++k) {
+      const std::uint32_t i = order[k];
+      sx[k] = x[i];
+      sy[k] = y[i];
+      sm[k] = mass[i];
+    }
+    done += range.end - range.begin;
+  }
+  work[bh::kRegionRanges * static_cast<std::size_t>(team) + t] = done;
 }
 
 // Sorts (keys, order) by key, equal keys in index order (order holds 0, 1,
 // ... on entry), called by every thread t of a team of nt. A most
 // significant digit first radix sort: the team splits a range by its next
-// digit (a stable counting pass, thread slices in order) until the ranges fit
-// in a thread's cache, then each thread sorts whole ranges on its own by
-// their remaining digits (sort_in_cache, the same way). The sorted order
-// is unique (key, then index), so it does not depend on the number of
-// threads or on how the work was split.
+// digit (a stable counting pass, thread slices in order) while it is larger
+// than team_split_from, then the ranges go to threads (assign_greedy), each
+// sorted on its own by its remaining digits (sort_own_ranges, sort_in_cache,
+// the same way). The sorted order is unique (key, then index), so it does
+// not depend on the number of threads or on how the work was split. Thread
+// t's first pass reads the slice that morton wrote: no barrier between.
 void BarnesHut::Workspace::sort_keys(std::size_t t, std::size_t nt) {
-#if defined(_OPENMP)
-#pragma omp single
-#endif
-  {
-    sort_large.assign(
-        1, bh::SortRange{0, static_cast<std::uint32_t>(keys.size()), bh::kRadixDigits, false});
-    sort_small.clear();
-  }
   for (std::size_t r = 0; r < sort_large.size(); ++r) {
     const bh::SortRange range = sort_large[r];  // a copy: the single below may grow the list
     split_range(range, t, nt);
+    work[bh::kRegionSplit * nt + t] +=
+        (range.end - range.begin) * (t + 1) / nt - (range.end - range.begin) * t / nt;
   }
-  const auto ranges = static_cast<std::ptrdiff_t>(sort_small.size());
-#if defined(_OPENMP)
-#pragma omp for schedule(dynamic, 1)
-#endif
-  for (std::ptrdiff_t r = 0; r < ranges; ++r) {
-    sort_range(sort_small[static_cast<std::size_t>(r)], sort_scratch[t]);
+  // Each thread works out the assignment itself (the same for all): no wait.
+  SortScratch& mine = sort_scratch[t];
+  mine.sizes.resize(sort_small.size());
+  for (std::size_t r = 0; r < sort_small.size(); ++r) {
+    mine.sizes[r] = sort_small[r].end - sort_small[r].begin;
   }
+  bh::assign_greedy(mine.sizes, nt, t, own_ranges[t], mine.by_size, mine.loads);
 }
 
 // The team's pass over `range` by its top remaining digit: into the other
@@ -268,39 +345,28 @@ void BarnesHut::Workspace::split_range(const bh::SortRange& range, std::size_t t
   std::size_t* counts = radix_counts.data() + t * bh::kRadixBuckets;
   std::fill(counts, counts + bh::kRadixBuckets, std::size_t{0});
   for (std::size_t i = lo; i < hi; ++i) ++counts[(from_keys[i] >> shift) & kMask];
-  bool skip = false;  // every key has the same digit: nothing moves
 #if defined(_OPENMP)
 #pragma omp barrier
-#pragma omp single copyprivate(skip)
 #endif
-  {
-    // Exclusive prefix sums, bucket-major then thread; each bucket's range listed.
-    std::size_t offset = range.begin;
-    for (std::size_t b = 0; b < bh::kRadixBuckets; ++b) {
-      const std::size_t first = offset;
-      for (std::size_t u = 0; u < nt; ++u) {
-        std::size_t& c = radix_counts[u * bh::kRadixBuckets + b];
-        const std::size_t here = c;
-        c = offset;
-        offset += here;
-      }
-      if (offset - first == length) skip = true;
+  // Every thread its own offsets (exclusive prefix sums, bucket-major then
+  // thread); thread 0 lists each bucket's range.
+  std::size_t mine[bh::kRadixBuckets];
+  std::size_t ends[bh::kRadixBuckets];
+  std::size_t offset = range.begin;
+  bool skip = false;  // every key has the same digit: nothing moves
+  for (std::size_t b = 0; b < bh::kRadixBuckets; ++b) {
+    const std::size_t first = offset;
+    for (std::size_t u = 0; u < nt; ++u) {
+      if (u == t) mine[b] = offset;
+      offset += radix_counts[u * bh::kRadixBuckets + b];
     }
-    const bool moved_to_tmp = skip ? range.in_tmp : !range.in_tmp;
-    offset = range.begin;
-    for (std::size_t b = 0; b < bh::kRadixBuckets; ++b) {
-      const std::size_t last = b + 1 < bh::kRadixBuckets ? radix_counts[b + 1] : range.end;
-      const bh::SortRange sub{static_cast<std::uint32_t>(offset), static_cast<std::uint32_t>(last),
-                              range.digits - 1, moved_to_tmp};
-      offset = last;
-      if (sub.end == sub.begin || (sub.digits == 0 && !sub.in_tmp)) continue;
-      const bool large = sub.end - sub.begin > bh::kSortInCache && sub.digits > 0;
-      (large ? sort_large : sort_small).push_back(sub);
-    }
+    ends[b] = offset;
+    if (offset - first == length) skip = true;
   }
+  if (t == 0) list_ranges(range, ends, skip);
   if (!skip) {
     for (std::size_t i = lo; i < hi; ++i) {
-      const std::size_t to = counts[(from_keys[i] >> shift) & kMask]++;
+      const std::size_t to = mine[(from_keys[i] >> shift) & kMask]++;
       to_keys[to] = from_keys[i];
       to_order[to] = from_order[i];
     }
@@ -308,6 +374,23 @@ void BarnesHut::Workspace::split_range(const bh::SortRange& range, std::size_t t
 #if defined(_OPENMP)
 #pragma omp barrier
 #endif
+}
+
+// The sub-ranges of `range` after a pass (bucket b ends at ends[b]), as
+// large (split again) or small (sorted, or left in place, by one thread,
+// which then gathers its bodies): every key ends in one small range.
+void BarnesHut::Workspace::list_ranges(const bh::SortRange& range, const std::size_t* ends,
+                                       bool skip) {
+  const bool moved_to_tmp = skip ? range.in_tmp : !range.in_tmp;
+  std::size_t offset = range.begin;
+  for (std::size_t b = 0; b < bh::kRadixBuckets; ++b) {
+    const bh::SortRange sub{static_cast<std::uint32_t>(offset), static_cast<std::uint32_t>(ends[b]),
+                            range.digits - 1, moved_to_tmp};
+    offset = ends[b];
+    if (sub.end == sub.begin) continue;
+    const bool large = sub.end - sub.begin > team_split_from && sub.digits > 0;
+    (large ? sort_large : sort_small).push_back(sub);
+  }
 }
 
 // One thread sorts `range` by its remaining digits in its own buffers and
@@ -372,27 +455,121 @@ std::uint32_t BarnesHut::Workspace::split(bh::Tree& t, std::uint32_t index, std:
   return children;
 }
 
-// The whole tree: its top serially (plan), the subtrees below in parallel
-// (each in its own Tree, numbered from 0), then the subtrees' nodes appended
-// in a fixed order and the top finished bottom up.
-void BarnesHut::Workspace::build_tree(int team) {
+// The frame of the float32 kernels, the top of the tree (serially: nodes
+// with more than `cutoff` bodies are split here, the others left in
+// `pending`) and the subtrees' threads. The cutoff depends on the bodies
+// only: the tree is the same for any number of threads, and there is never
+// a group or a leaf above the subtrees.
+void BarnesHut::Workspace::plan_tree(double G) {
+  frame = detail::float_frame(x0 + side * 0.5, y0 + side * 0.5, side * 0.5, max_mass, G);
   const auto n = static_cast<std::uint32_t>(keys.size());
   tree.reset();
   tree.nodes.reserve(2 * std::size_t{n});  // every inner node has >= 2 children: < 2n nodes
   tree.moments.reserve(2 * std::size_t{n});
   pending.clear();
   top.clear();
-  // Never a group or a leaf above the subtrees. The cutoff depends on the
-  // bodies only: the tree is the same for any number of threads.
   const std::size_t cutoff = std::max({std::size_t{n} / bh::kSubtrees, group_size, leaf_size});
   plan(0, 0, n, 0, cutoff);
-  build_parts(team);
-  merge_parts(team);
-  for (auto it = top.rbegin(); it != top.rend(); ++it) finish_node(tree, *it);
+  if (parts.size() < pending.size()) parts.resize(pending.size());
+  item_sizes.resize(pending.size());
+  for (std::size_t k = 0; k < pending.size(); ++k) {
+    item_sizes[k] = pending[k].end - pending[k].begin;
+  }
 }
 
-// The top of the tree, serially: nodes with more than `cutoff` bodies are
-// split here; the others are left in `pending` for the parallel build.
+// Thread t's subtrees, each in its own Tree (numbered from 0), and their
+// bodies' float32 masses.
+void BarnesHut::Workspace::build_own_parts(std::size_t t) {
+  SortScratch& mine = sort_scratch[t];
+  bh::assign_greedy(item_sizes, static_cast<std::size_t>(team), t, own_parts[t], mine.by_size,
+                    mine.loads);
+  std::uint64_t bodies = 0;
+  for (const std::uint32_t k : own_parts[t]) {
+    const bh::Pending& p = pending[k];
+    bh::Tree& part = parts[k];
+    part.reset();
+    part.nodes.reserve(2 * std::size_t{p.end - p.begin});
+    part.moments.reserve(2 * std::size_t{p.end - p.begin});
+    build_node(part, 0, p.begin, p.end, p.depth, false);
+    if (single) float_masses(p.begin, p.end);
+    bodies += p.end - p.begin;
+  }
+  work[bh::kRegionSubtrees * static_cast<std::size_t>(team) + t] = bodies;
+}
+
+// Where the parts' nodes go: part k's node c to its root's slot (c = 0) or
+// to part_base[k] + c - 1; the groups in part order.
+void BarnesHut::Workspace::place_parts() {
+  part_base.resize(pending.size() + 1);
+  part_base[0] = tree.nodes.size();
+  for (std::size_t k = 0; k < pending.size(); ++k) {
+    part_base[k + 1] = part_base[k] + parts[k].nodes.size() - 1;
+    tree.depth = std::max(tree.depth, parts[k].depth);
+    tree.leaves += parts[k].leaves;
+  }
+  const std::size_t nodes = part_base.back();
+  tree.nodes.resize(nodes);
+  tree.moments.resize(nodes);
+  parent.resize(nodes);
+  (single ? node32.resize(nodes * bh::kMoments) : node64.resize(nodes * bh::kMoments));
+  for (std::size_t k = 0; k < pending.size(); ++k) {
+    const auto base = static_cast<std::uint32_t>(part_base[k]);
+    for (const std::uint32_t g : parts[k].groups) {
+      tree.groups.push_back(g == 0 ? pending[k].index : base + g - 1);
+    }
+  }
+}
+
+// The parts' nodes into the tree, with their parents and kernel moments:
+// thread t takes its slice of all the parts' nodes, one after the other
+// (part k's start among them: part_base[k] - part_base[0] + k).
+void BarnesHut::Workspace::copy_own_parts(std::size_t t) {
+  const std::size_t parts_n = pending.size();
+  const std::size_t total = part_base[parts_n] - part_base[0] + parts_n;
+  const auto nt = static_cast<std::size_t>(team);
+  const std::size_t lo = total * t / nt;
+  const std::size_t hi = total * (t + 1) / nt;
+  const auto start = [&](std::size_t k) { return part_base[k] - part_base[0] + k; };
+  // The part holding item lo: the last k with start(k) <= lo.
+  std::size_t lo_k = 0;
+  std::size_t hi_k = parts_n;
+  while (hi_k - lo_k > 1) {
+    const std::size_t mid = (lo_k + hi_k) / 2;
+    (start(mid) <= lo ? lo_k : hi_k) = mid;
+  }
+  for (std::size_t k = lo_k, item = lo; item < hi; ++k) {
+    const bh::Tree& part = parts[k];
+    const std::uint32_t root = pending[k].index;
+    const auto base = static_cast<std::uint32_t>(part_base[k]);
+    for (std::size_t c = item - start(k); c < part.nodes.size() && item < hi; ++c, ++item) {
+      bh::Node node = part.nodes[c];
+      const auto to = static_cast<std::uint32_t>(c == 0 ? root : base + c - 1);
+      if (node.children > 0) {
+        node.child = base + node.child - 1;
+        for (std::uint32_t d = node.child; d < node.child + node.children; ++d) parent[d] = to;
+      }
+      tree.nodes[to] = node;
+      tree.moments[to] = part.moments[c];
+      kernel_moments(to);
+    }
+  }
+  work[bh::kRegionNodes * nt + t] = hi - lo;
+}
+
+// The nodes above the subtrees, bottom up (children first), with their
+// kernel moments and their children's parent.
+void BarnesHut::Workspace::finish_top() {
+  parent[0] = ~std::uint32_t{0};
+  for (auto it = top.rbegin(); it != top.rend(); ++it) {
+    finish_node(tree, *it);
+    kernel_moments(*it);
+    const bh::Node& node = tree.nodes[*it];
+    for (std::uint32_t c = node.child; c < node.child + node.children; ++c) parent[c] = *it;
+  }
+}
+
+// Splits the top of the tree, serially, down to nodes of at most `cutoff`
+// bodies (or of one Morton code), which go to `pending`.
 void BarnesHut::Workspace::plan(std::uint32_t index, std::uint32_t begin, std::uint32_t end,
                                 int tree_depth, std::size_t cutoff) {
   const int level = level_of(begin, end);
@@ -408,61 +585,6 @@ void BarnesHut::Workspace::plan(std::uint32_t index, std::uint32_t begin, std::u
     if (bounds[q + 1] > bounds[q]) plan(c++, bounds[q], bounds[q + 1], tree_depth + 1, cutoff);
   }
 }
-
-// Each pending subtree in its own Tree, threads taking them dynamically.
-void BarnesHut::Workspace::build_parts([[maybe_unused]] int team) {
-  if (parts.size() < pending.size()) parts.resize(pending.size());
-  const auto count = static_cast<std::ptrdiff_t>(pending.size());
-#if defined(_OPENMP)
-#pragma omp parallel for schedule(dynamic, 1) num_threads(team)
-#endif
-  for (std::ptrdiff_t k = 0; k < count; ++k) {
-    const bh::Pending& p = pending[static_cast<std::size_t>(k)];
-    bh::Tree& part = parts[static_cast<std::size_t>(k)];
-    part.reset();
-    part.nodes.reserve(2 * std::size_t{p.end - p.begin});
-    part.moments.reserve(2 * std::size_t{p.end - p.begin});
-    build_node(part, 0, p.begin, p.end, p.depth, false);
-  }
-}
-
-// The parts' nodes into the tree: part k's node c goes to its root's slot
-// (c = 0) or to part_base[k] + c - 1; groups in part order.
-void BarnesHut::Workspace::merge_parts([[maybe_unused]] int team) {
-  part_base.resize(pending.size() + 1);
-  part_base[0] = tree.nodes.size();
-  for (std::size_t k = 0; k < pending.size(); ++k) {
-    part_base[k + 1] = part_base[k] + parts[k].nodes.size() - 1;
-    tree.depth = std::max(tree.depth, parts[k].depth);
-    tree.leaves += parts[k].leaves;
-  }
-  tree.nodes.resize(part_base.back());
-  tree.moments.resize(part_base.back());
-  const auto count = static_cast<std::ptrdiff_t>(pending.size());
-#if defined(_OPENMP)
-#pragma omp parallel for schedule(dynamic, 1) num_threads(team)
-#endif
-  for (std::ptrdiff_t k = 0; k < count; ++k) {
-    const auto u = static_cast<std::size_t>(k);
-    const bh::Tree& part = parts[u];
-    const std::uint32_t root = pending[u].index;
-    const auto base = static_cast<std::uint32_t>(part_base[u]);
-    for (std::size_t c = 0; c < part.nodes.size(); ++c) {
-      bh::Node node = part.nodes[c];
-      if (node.children > 0) node.child = base + node.child - 1;
-      const std::size_t to = c == 0 ? root : base + c - 1;
-      tree.nodes[to] = node;
-      tree.moments[to] = part.moments[c];
-    }
-  }
-  for (std::size_t k = 0; k < pending.size(); ++k) {
-    const auto base = static_cast<std::uint32_t>(part_base[k]);
-    for (const std::uint32_t g : parts[k].groups) {
-      tree.groups.push_back(g == 0 ? pending[k].index : base + g - 1);
-    }
-  }
-}
-
 // Builds node `index` of t over the bodies [begin, end) (end > begin) and its
 // subtree: split unless it has at most leaf_size bodies or they all share one
 // Morton code. The first node on each path with at most group_size bodies
@@ -601,5 +723,32 @@ void BarnesHut::Workspace::set_opening_radius(bh::Node& node) const {
   const double open = size * inv_theta + delta;
   node.open2 = open * open;
 }
+
+namespace bh {
+
+void assign_greedy(const std::vector<std::uint64_t>& sizes, std::size_t nt, std::size_t t,
+                   std::vector<std::uint32_t>& mine, std::vector<std::uint32_t>& by_size,
+                   std::vector<std::uint64_t>& load) {
+  mine.clear();
+  by_size.resize(sizes.size());
+  for (std::size_t i = 0; i < sizes.size(); ++i) by_size[i] = static_cast<std::uint32_t>(i);
+  if (nt <= 1) {
+    mine = by_size;
+    return;
+  }
+  std::sort(by_size.begin(), by_size.end(), [&](std::uint32_t a, std::uint32_t b) {
+    return sizes[a] != sizes[b] ? sizes[a] > sizes[b] : a < b;
+  });
+  load.assign(nt, 0);
+  for (const std::uint32_t item : by_size) {
+    const auto least =
+        static_cast<std::size_t>(std::min_element(load.begin(), load.end()) - load.begin());
+    if (least == t) mine.push_back(item);
+    load[least] += sizes[item];
+  }
+  std::sort(mine.begin(), mine.end());  // in memory order
+}
+
+}  // namespace bh
 
 }  // namespace calder::nbody

@@ -4,6 +4,7 @@
 // P = sum m s |s|^2), in float64 or scaled into the float32 frame, and the
 // bodies' masses for float32.
 #include <cstddef>
+#include <cstdint>
 #include <vector>
 
 #include "barnes_hut_tree.hpp"
@@ -46,42 +47,23 @@ void write_moments(const bh::Moments& m, const MomentScales& s, T* o) {
   o[19] = static_cast<T>(1.875 * (m.hxxxx + 2.0 * m.hxxyy + m.hyyyy) * s.fourth);
 }
 
-template <typename T>
-void write_all_moments(const std::vector<bh::Moments>& moments, const MomentScales& s,
-                       std::vector<T>& out, [[maybe_unused]] int team) {
-  out.resize(moments.size() * bh::kMoments);
-  const auto count = static_cast<std::ptrdiff_t>(moments.size());
-#if defined(_OPENMP)
-#pragma omp parallel for schedule(static) num_threads(team)
-#endif
-  for (std::ptrdiff_t node = 0; node < count; ++node) {
-    const auto i = static_cast<std::size_t>(node);
-    write_moments(moments[i], s, out.data() + i * bh::kMoments);
-  }
-}
-
 }  // namespace
 
-void BarnesHut::Workspace::prepare_kernel_inputs(const detail::FloatFrame& frame, bool float32,
-                                                 [[maybe_unused]] int team) {
-  if (!float32) {
-    write_all_moments(tree.moments, MomentScales{}, node64, team);
+void BarnesHut::Workspace::kernel_moments(std::size_t i) {
+  if (!single) {
+    write_moments(tree.moments[i], MomentScales{}, node64.data() + i * bh::kMoments);
     return;
   }
   const double second = frame.scale * frame.scale * frame.mass_scale;
-  write_all_moments(tree.moments,
-                    MomentScales{frame.mass_scale, second, second * frame.scale,
-                                 second * frame.scale * frame.scale},
-                    node32, team);
-  const std::size_t n = sm.size();
-  sm32.resize(n);
-#if defined(_OPENMP)
-#pragma omp parallel for schedule(static) num_threads(team)
-#endif
-  for (std::ptrdiff_t r = 0; r < static_cast<std::ptrdiff_t>(n); ++r) {
-    const auto u = static_cast<std::size_t>(r);
-    sm32[u] = static_cast<float>(sm[u] * frame.mass_scale);
-  }
+  write_moments(tree.moments[i],
+                MomentScales{frame.mass_scale, second, second * frame.scale,
+                             second * frame.scale * frame.scale},
+                node32.data() + i * bh::kMoments);
+}
+
+void BarnesHut::Workspace::float_masses(std::uint32_t begin, std::uint32_t end) {
+  for (std::uint32_t r = begin; r < end; ++r)
+    sm32[r] = static_cast<float>(sm[r] * frame.mass_scale);
 }
 
 }  // namespace calder::nbody

@@ -30,8 +30,12 @@ inline constexpr std::size_t kRadixBuckets = std::size_t{1} << kRadixBits;
 inline constexpr int kRadixDigits = 2 * kBits / kRadixBits;
 // Ranges of the sort up to this many keys are sorted by one thread in its
 // cache (12 bytes a key, twice: about 0.8 MB); larger ones are split by the
-// team.
+// team. So that the ranges share out evenly, a range is also split by the
+// team while it holds more than 1 / kRangesPerThread of a thread's share of
+// the keys (but not below kMinTeamSplit keys).
 inline constexpr std::size_t kSortInCache = 32768;
+inline constexpr std::size_t kRangesPerThread = 32;
+inline constexpr std::size_t kMinTeamSplit = 256;
 // Per node, as the multipole kernels read them (kernels.hpp): m, 3 Q (3),
 // 1.5 tr Q, 7.5 O (4), 1.5 P (2), 17.5 H (5), 7.5 tr H (3), 1.875 tr tr H.
 inline constexpr std::size_t kMoments = 20;
@@ -39,8 +43,46 @@ inline constexpr std::size_t kMoments = 20;
 // below, waking them costs more than they save.
 inline constexpr std::size_t kParallelFrom = 2000;
 // About this many subtrees are built in parallel (at every size, so that the
-// tree does not depend on the number of threads).
-inline constexpr std::size_t kSubtrees = 64;
+// tree does not depend on the number of threads): enough that each of 16 or
+// more threads gets several, of sizes that even out.
+inline constexpr std::size_t kSubtrees = 256;
+
+// The parallel regions of a step, whose per-thread work BarnesHutStats::work
+// reports (ThreadWork's region and unit).
+enum Region : int {
+  kRegionBodies,    // bounding box and Morton codes: bodies
+  kRegionSplit,     // the team's radix passes: keys
+  kRegionRanges,    // ranges sorted by one thread, bodies gathered: keys
+  kRegionSubtrees,  // subtrees built: bodies
+  kRegionNodes,     // subtrees' nodes placed, kernel moments: nodes
+  kRegionWalk,      // tree walks and sums: interactions
+  kRegionScatter,   // sums back to the caller's order: bodies
+  kRegions,
+};
+inline constexpr const char* kRegionNames[kRegions][2] = {
+    {"bounds and Morton codes", "bodies"},
+    {"radix passes", "keys"},
+    {"sorted ranges and gather", "keys"},
+    {"subtrees", "bodies"},
+    {"subtree nodes and moments", "nodes"},
+    {"walk", "interactions"},
+    {"scatter", "bodies"},
+};
+
+// Items of the given sizes to nt threads: largest first (lower index on
+// ties), each to the thread with the least so far (lower thread on ties).
+// Depends on the sizes and nt only. mine: thread t's items, in index order.
+void assign_greedy(const std::vector<std::uint64_t>& sizes, std::size_t nt, std::size_t t,
+                   std::vector<std::uint32_t>& mine, std::vector<std::uint32_t>& by_size,
+                   std::vector<std::uint64_t>& load);
+
+// The root square's lower corner and side, and the heaviest mass.
+struct Square {
+  double x0 = 0.0;
+  double y0 = 0.0;
+  double side = 1.0;
+  double max_mass = 0.0;
+};
 
 // What the walk reads of a node.
 struct Node {
@@ -176,10 +218,14 @@ struct BarnesHut::Workspace {
   std::vector<std::uint32_t> order_tmp;
   std::vector<std::size_t> radix_counts;  // per thread and bucket
   std::vector<bh::SortRange> sort_large;  // ranges the team splits by their next digit
-  std::vector<bh::SortRange> sort_small;  // ranges one thread sorts
+  std::vector<bh::SortRange> sort_small;  // ranges one thread sorts (all that are not split)
+  std::size_t team_split_from = 0;        // ranges larger than this are split by the team
   struct alignas(64) SortScratch {        // a thread's buffers for its ranges
     std::vector<std::uint64_t> keys[2];
     std::vector<std::uint32_t> order[2];
+    std::vector<std::uint64_t> sizes;  // and for assign_greedy
+    std::vector<std::uint32_t> by_size;
+    std::vector<std::uint64_t> loads;
   };
   std::vector<SortScratch> sort_scratch;
   std::vector<double> sx;  // bodies in Morton order
@@ -191,9 +237,20 @@ struct BarnesHut::Workspace {
   std::vector<bh::Pending> pending;    // their roots
   std::vector<std::uint32_t> top;      // the nodes above them, in creation order
   std::vector<std::size_t> part_base;  // where each part's nodes go in the tree
-  std::vector<double> node64;          // kMoments per node, as the float64 kernels read them
-  std::vector<float> node32;           // the same scaled for float32
-  double x0 = 0.0;                     // the root square [x0, x0 + side) x [y0, y0 + side)
+  // Thread t's sort ranges and subtrees (assign_greedy), and its scratch.
+  std::vector<std::vector<std::uint32_t>> own_ranges;
+  std::vector<std::vector<std::uint32_t>> own_parts;
+  std::vector<std::uint64_t> item_sizes;  // the subtrees' bodies
+  // Per thread: bounding box (xmin, xmax, ymin, ymax) and heaviest body.
+  std::vector<double> partial;
+  // work[region * team + t]: thread t's work in a region (bh::Region).
+  std::vector<std::uint64_t> work;
+  int team = 1;
+  bool single = false;  // float32 sums
+  detail::FloatFrame frame;
+  std::vector<double> node64;  // kMoments per node, as the float64 kernels read them
+  std::vector<float> node32;   // the same scaled for float32
+  double x0 = 0.0;             // the root square [x0, x0 + side) x [y0, y0 + side)
   double y0 = 0.0;
   double side = 1.0;
   double max_mass = 0.0;
@@ -213,26 +270,37 @@ struct BarnesHut::Workspace {
     std::vector<std::uint32_t> unit_near;    // nodes a unit accepts, not in its far list
     std::vector<std::uint32_t> unit_leaves;  // leaves a unit opens
     std::vector<std::uint32_t> stack;
+    std::vector<double> prefix;  // running costs of the units
     std::uint64_t interactions = 0;
     std::uint64_t node_interactions = 0;
   };
   std::vector<Scratch> scratch;
   // Runs of groups with one parent (first group, count), walked together.
-  std::vector<std::uint32_t> parent;
+  std::vector<std::uint32_t> parent;  // each node's (filled by the build; root: ~0)
   std::vector<std::pair<std::uint32_t, std::uint32_t>> units;
+  std::vector<double> unit_cost;  // estimated (walk)
+  std::vector<float> body_cost;   // interactions per body of the last call, by caller's index
 
-  // barnes_hut_build.cpp
+  // barnes_hut_build.cpp: the whole build in one parallel region.
   void build(std::span<const double> x, std::span<const double> y, std::span<const double> mass,
-             int threads);
-  void bound(std::span<const double> x, std::span<const double> y, int team);
-  void sort_bodies(std::span<const double> x, std::span<const double> y,
-                   std::span<const double> mass, int team);
+             int threads, double G);
+  void size_buffers(std::size_t n);
+  void bound(std::span<const double> x, std::span<const double> y, std::span<const double> mass,
+             std::size_t t, std::size_t nt);
+  bh::Square combine_bounds(std::size_t nt) const;
+  void morton(std::span<const double> x, std::span<const double> y, const bh::Square& square,
+              std::size_t t, std::size_t nt);
   void sort_keys(std::size_t t, std::size_t nt);
   void split_range(const bh::SortRange& range, std::size_t t, std::size_t nt);
+  void list_ranges(const bh::SortRange& range, const std::size_t* ends, bool skip);
   void sort_range(const bh::SortRange& range, SortScratch& buffers);
-  void build_tree(int threads);
-  void build_parts(int team);
-  void merge_parts(int team);
+  void sort_own_ranges(std::span<const double> x, std::span<const double> y,
+                       std::span<const double> mass, std::size_t t);
+  void plan_tree(double G);
+  void build_own_parts(std::size_t t);
+  void place_parts();
+  void copy_own_parts(std::size_t t);
+  void finish_top();
   int level_of(std::uint32_t begin, std::uint32_t end) const;
   std::uint32_t split(bh::Tree& t, std::uint32_t index, std::uint32_t begin, std::uint32_t end,
                       int level, std::uint32_t (&bounds)[5]) const;
@@ -245,11 +313,21 @@ struct BarnesHut::Workspace {
   static void merge_moments(const bh::Tree& t, bh::Node& node, bh::Moments& mo);
   void set_opening_radius(bh::Node& node) const;
 
-  // barnes_hut_moments.cpp
-  void prepare_kernel_inputs(const detail::FloatFrame& frame, bool float32, int team);
+  // barnes_hut_moments.cpp: node i's moments as the kernels read them
+  // (node64, or node32 in the frame), and bodies' float32 masses.
+  void kernel_moments(std::size_t i);
+  void float_masses(std::uint32_t begin, std::uint32_t end);
 
   // barnes_hut_walk.cpp
-  void walk(const detail::LawParams& p, double scale, bool float32, int threads);
+  // The walk and the scatter of factor * the sums to (ax, ay), one region.
+  void walk(const detail::LawParams& p, double scale, int threads, double factor,
+            std::span<double> ax, std::span<double> ay);
+  void scatter_share(std::size_t t, std::size_t nt, double factor, std::span<double> ax,
+                     std::span<double> ay);
+  void estimate_costs(std::size_t first, std::size_t last, bool history);
+  std::pair<std::size_t, std::size_t> my_units(std::size_t t, std::size_t nt, Scratch& s) const;
+  void walk_units(std::size_t first, std::size_t last, const detail::LawParams& p, double scale,
+                  Scratch& s);
   template <typename T>
   void walk_group(std::uint32_t group, Scratch& s, const detail::KernelTable& k,
                   const detail::LawParams& p, double scale);

@@ -10,8 +10,9 @@
 // centre. Groups that share a parent form a unit (walk_unit): one walk from
 // the root for all of them, its far list summed once for all their bodies,
 // each group's walk continued from what the unit left open. Units go to
-// threads dynamically; each body's sum is made by one thread in a fixed
-// order, so the results do not depend on the number of threads.
+// threads in runs of equal estimated cost (walk); each body's sum is made by
+// one thread in a fixed order, so the results do not depend on the number
+// of threads.
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
@@ -114,56 +115,122 @@ template <class Accepted, class Leaf>
 }
 }  // namespace
 
-void BarnesHut::Workspace::walk(const detail::LawParams& p, double scale, bool float32,
-                                int threads) {
-  const detail::KernelTable& k = detail::kernels();
+// Units go to threads in contiguous runs of about equal estimated cost (the
+// runs of Morton order keep each thread's bodies together). A unit's cost:
+// the interactions per body that the last call measured for its bodies
+// (by the caller's index: bodies move little between steps), or 1 a body on
+// a first call or when the number of bodies changed. The split depends on
+// the calls' inputs only, never on timing.
+void BarnesHut::Workspace::walk(const detail::LawParams& p, double scale, int threads,
+                                double factor, std::span<double> ax, std::span<double> ay) {
   const std::size_t n = sx.size();
   sum_x.resize(n);  // zeroed group by group
   sum_y.resize(n);
   scratch.resize(static_cast<std::size_t>(threads));
   for (auto& s : scratch) s.interactions = s.node_interactions = 0;
-  const bool multipoles = p.law == Law::plummer;
   plan_units();
-  const auto count = static_cast<std::ptrdiff_t>(units.size());
+  unit_cost.resize(units.size());
+  const bool history = body_cost.size() == n;
+  body_cost.resize(n);
+  const auto nt = static_cast<std::size_t>(bh::team_for(n, threads));
 #if defined(_OPENMP)
-#pragma omp parallel num_threads(bh::team_for(n, threads))
+#pragma omp parallel num_threads(static_cast <int>(nt))
 #endif
   {
 #if defined(_OPENMP)
-    Scratch& s = scratch[static_cast<std::size_t>(omp_get_thread_num())];
-#pragma omp for schedule(dynamic, 1)
+    const auto t = static_cast<std::size_t>(omp_get_thread_num());
 #else
-    Scratch& s = scratch[0];
+    const std::size_t t = 0;
 #endif
-    for (std::ptrdiff_t u = 0; u < count; ++u) {
-      const auto [first, groups] = units[static_cast<std::size_t>(u)];
-      if (multipoles && groups > 1) {
-        if (float32) {
-          walk_unit<float>(first, groups, s, k, p, scale);
-        } else {
-          walk_unit<double>(first, groups, s, k, p, scale);
-        }
-        continue;
+    Scratch& s = scratch[t];
+    estimate_costs(units.size() * t / nt, units.size() * (t + 1) / nt, history);
+#if defined(_OPENMP)
+#pragma omp barrier
+#endif
+    const auto [first, last] = my_units(t, nt, s);
+    walk_units(first, last, p, scale, s);
+    work[bh::kRegionWalk * nt + t] = s.interactions;
+#if defined(_OPENMP)
+#pragma omp barrier
+#endif
+    scatter_share(t, nt, factor, ax, ay);
+  }
+}
+
+// Units [first, last)'s estimated costs.
+void BarnesHut::Workspace::estimate_costs(std::size_t first, std::size_t last, bool history) {
+  for (std::size_t u = first; u < last; ++u) {
+    const auto [g, count] = units[u];
+    const std::uint32_t begin = tree.nodes[tree.groups[g]].begin;
+    const std::uint32_t end = tree.nodes[tree.groups[g + count - 1]].end;
+    double cost = 0.0;
+    if (history) {
+      for (std::uint32_t r = begin; r < end; ++r) cost += static_cast<double>(body_cost[order[r]]);
+    }
+    unit_cost[u] = history ? cost : static_cast<double>(end - begin);
+  }
+}
+
+// Thread t's run of units: where the running cost passes t / nt and
+// (t + 1) / nt of the total (every thread works it out alike).
+std::pair<std::size_t, std::size_t> BarnesHut::Workspace::my_units(std::size_t t, std::size_t nt,
+                                                                   Scratch& s) const {
+  s.prefix.resize(unit_cost.size() + 1);
+  s.prefix[0] = 0.0;
+  for (std::size_t u = 0; u < unit_cost.size(); ++u) s.prefix[u + 1] = s.prefix[u] + unit_cost[u];
+  const double total = s.prefix.back();
+  const auto at = [&](std::size_t k) {  // the first unit whose middle lies past k / nt of the total
+    const double mark = total * static_cast<double>(k) / static_cast<double>(nt);
+    std::size_t u = 0;
+    std::size_t hi = unit_cost.size();
+    while (u < hi) {
+      const std::size_t mid = (u + hi) / 2;
+      if (s.prefix[mid] + 0.5 * unit_cost[mid] < mark) {
+        u = mid + 1;
+      } else {
+        hi = mid;
       }
-      for (std::uint32_t g = first; g < first + groups; ++g) {
-        if (float32) {
+    }
+    return k == nt ? unit_cost.size() : u;
+  };
+  return {at(t), at(t + 1)};
+}
+
+// Walks units [first, last) and records their bodies' interactions.
+void BarnesHut::Workspace::walk_units(std::size_t first, std::size_t last,
+                                      const detail::LawParams& p, double scale, Scratch& s) {
+  const detail::KernelTable& k = detail::kernels();
+  const bool multipoles = p.law == Law::plummer;
+  for (std::size_t u = first; u < last; ++u) {
+    const auto [g0, groups] = units[u];
+    const std::uint64_t before = s.interactions;
+    if (multipoles && groups > 1) {
+      if (single) {
+        walk_unit<float>(g0, groups, s, k, p, scale);
+      } else {
+        walk_unit<double>(g0, groups, s, k, p, scale);
+      }
+    } else {
+      for (std::uint32_t g = g0; g < g0 + groups; ++g) {
+        if (single) {
           walk_group<float>(tree.groups[g], s, k, p, scale);
         } else {
           walk_group<double>(tree.groups[g], s, k, p, scale);
         }
       }
     }
+    const std::uint32_t begin = tree.nodes[tree.groups[g0]].begin;
+    const std::uint32_t end = tree.nodes[tree.groups[g0 + groups - 1]].end;
+    const auto per_body = static_cast<float>(static_cast<double>(s.interactions - before) /
+                                             static_cast<double>(end - begin));
+    for (std::uint32_t r = begin; r < end; ++r) body_cost[order[r]] = per_body;
   }
 }
 
-// Units: runs of consecutive groups (in walk order) that share a parent.
+// Units: runs of consecutive groups (in walk order) that share a parent
+// (parents from the build).
 void BarnesHut::Workspace::plan_units() {
   constexpr std::uint32_t kNone = ~std::uint32_t{0};
-  parent.assign(tree.nodes.size(), kNone);
-  for (std::uint32_t i = 0; i < tree.nodes.size(); ++i) {
-    const bh::Node& n = tree.nodes[i];
-    for (std::uint32_t c = n.child; c < n.child + n.children; ++c) parent[c] = i;
-  }
   units.clear();
   const auto groups = static_cast<std::uint32_t>(tree.groups.size());
   for (std::uint32_t g = 0; g < groups;) {
@@ -410,7 +477,7 @@ void BarnesHut::Workspace::sum_group(const bh::Node& g, const bh::GroupFrame& f,
   // Float64 sums the Plummer law's opened leaves block by block where asked
   // (target_block; the clamped laws' body list also holds the accepted
   // nodes' point masses). Float32 pairs are cheap enough that the blocks'
-  // lists cost more than they save (0.91-0.97x, AVX2 and AVX-512).
+  // lists cost more than they save.
   const bool by_block =
       sizeof(T) == 8 && p.law == Law::plummer && target_block > 0 && count > target_block;
   const std::size_t far_rows = lists.far.size > 0 ? kStencil * kStencil : 0;

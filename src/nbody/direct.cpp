@@ -1,12 +1,15 @@
 // SPDX-License-Identifier: MIT
 // calder::nbody: validation, the reference sum and direct summation.
 #include <algorithm>
+#include <atomic>
 #include <cfloat>
 #include <cmath>
 #include <cstddef>
 #include <functional>
 #include <iterator>
+#include <memory>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "calder/error.hpp"
@@ -23,6 +26,19 @@ namespace calder::nbody {
 namespace detail {
 
 namespace {
+
+struct ThisThread {
+  std::size_t t;
+  std::size_t nt;
+};
+ThisThread this_thread() {
+#if defined(_OPENMP)
+  return {static_cast<std::size_t>(omp_get_thread_num()),
+          static_cast<std::size_t>(omp_get_num_threads())};
+#else
+  return {0, 1};
+#endif
+}
 
 bool overlaps(std::span<const double> a, std::span<double> b) {
   if (a.empty() || b.empty()) return false;
@@ -150,12 +166,11 @@ LawParams law_params(const Options& options, const FloatFrame& frame) {
 // kStripesForPairs stripes of kFloatTile bodies or more (below, the one-sided
 // blocks cost little and share out better). The bodies, padded to whole
 // vectors with massless copies of body 0, are cut into stripes of as many
-// vectors as can be (at most kFloatTile bodies, so that the threads' pairs
-// of a round cost the same; a short last stripe held one thread back); a first
-// round sums each stripe over itself (self_pairs), then the circle method's
-// rounds pair every two stripes once, each stripe in one pair a round at
-// most: the pairs of a round run side by side and add to disjoint sums, and
-// each body's sum runs in round order, the same for any thread count.
+// vectors as can be (at most kFloatTile bodies, so that all tasks cost about
+// the same); a first round sums each stripe over itself (self_pairs), then
+// the circle method's rounds pair every two stripes once, each stripe in one
+// pair a round at most. Each stripe's sums take their pairs in round order,
+// the same for any thread count.
 inline constexpr std::size_t kStripesForPairs = 8;
 
 bool sums_pairs_once(std::size_t n) {
@@ -184,9 +199,61 @@ void self_pairs(const Bodies<T>& own, std::size_t lanes, double* sum_x, double* 
   self_pairs(upper, lanes, sum_x + half, sum_y + half, one_sided, pairs);
 }
 
+// The tasks of the pair-once sum, in one global order: task k < P sums
+// stripe k over itself; task P + r M + u is match u of round r (M matches a
+// round; P stripes, one of them idle a round when P is odd). Task k runs on
+// thread k mod T, whatever T: every thread gets an even share, and no
+// barrier holds the threads between rounds. Instead a task waits until its
+// two stripes have finished their earlier tasks (done[s] counts them): the
+// lowest unfinished task can always run, and each stripe's sums still take
+// their pairs in round order.
+class StripeSchedule {
+ public:
+  explicit StripeSchedule(std::size_t stripes)
+      : stripes_(stripes),
+        players_(stripes + stripes % 2),
+        done_(std::make_unique<std::atomic<std::uint32_t>[]>(stripes)) {
+    for (std::size_t s = 0; s < stripes; ++s) done_[s].store(0, std::memory_order_relaxed);
+  }
+  std::size_t matches() const { return players_ / 2; }
+  std::size_t tasks() const { return stripes_ + (players_ - 1) * matches(); }
+  // Task k's stripes and round (a == b: a stripe over itself); a >= stripes: the idle match.
+  struct Task {
+    std::size_t a;
+    std::size_t b;
+    std::size_t round;
+  };
+  Task task(std::size_t k) const {
+    if (k < stripes_) return {k, k, 0};
+    const std::size_t r = (k - stripes_) / matches();
+    const std::size_t u = (k - stripes_) % matches();
+    const std::size_t circle = players_ - 1;
+    const std::size_t a = u == 0 ? players_ - 1 : (r + u) % circle;
+    const std::size_t b = u == 0 ? r : (r + circle - u) % circle;
+    return {a, b, r};
+  }
+  // The tasks stripe s has finished before its match of round r (its own
+  // sum, the rounds before; with P odd, stripe s is idle in round s).
+  std::uint32_t before(std::size_t s, std::size_t r) const {
+    const std::size_t idle = stripes_ % 2 == 1 && s < r ? 1 : 0;
+    return static_cast<std::uint32_t>(1 + r - idle);
+  }
+  void wait(std::size_t s, std::uint32_t count) const {
+    for (int spin = 0; done_[s].load(std::memory_order_acquire) < count; ++spin) {
+      if (spin >= 64) std::this_thread::yield();
+    }
+  }
+  void finish(std::size_t s) { done_[s].fetch_add(1, std::memory_order_release); }
+
+ private:
+  std::size_t stripes_;
+  std::size_t players_;
+  std::unique_ptr<std::atomic<std::uint32_t>[]> done_;
+};
+
 template <typename T, typename OneSided, typename Pairs>
 void sum_by_stripes(const Bodies<T>& bodies, std::size_t lanes, int threads, double* sum_x,
-                    double* sum_y, OneSided one_sided, Pairs pairs) {
+                    double* sum_y, std::uint64_t* work, OneSided one_sided, Pairs pairs) {
   const std::size_t stripes = (bodies.n + kFloatTile - 1) / kFloatTile;
   const std::size_t vectors = bodies.n / lanes;  // (bodies.n: whole vectors)
   // Stripe k: vectors k V / P to (k + 1) V / P (at most kFloatTile bodies:
@@ -195,34 +262,33 @@ void sum_by_stripes(const Bodies<T>& bodies, std::size_t lanes, int threads, dou
   const auto stripe = [&](std::size_t k) {
     return bodies.slice(first(k), first(k + 1) - first(k));
   };
-  const std::size_t players = stripes + stripes % 2;  // even: a bye when odd
-  const auto diagonal = static_cast<std::ptrdiff_t>(stripes);
-  const auto matches = static_cast<std::ptrdiff_t>(players / 2);
+  StripeSchedule schedule(stripes);
 #if defined(_OPENMP)
 #pragma omp parallel num_threads(threads)
 #endif
   {
-#if defined(_OPENMP)
-#pragma omp for schedule(static)
-#endif
-    for (std::ptrdiff_t k = 0; k < diagonal; ++k) {
-      const auto u = static_cast<std::size_t>(k);
-      self_pairs(stripe(u), lanes, sum_x + first(u), sum_y + first(u), one_sided, pairs);
-    }
-    for (std::size_t round = 0; round + 1 < players; ++round) {
-#if defined(_OPENMP)
-#pragma omp for schedule(static)
-#endif
-      for (std::ptrdiff_t t = 0; t < matches; ++t) {
-        const auto u = static_cast<std::size_t>(t);
-        const std::size_t circle = players - 1;
-        const std::size_t a = u == 0 ? players - 1 : (round + u) % circle;
-        const std::size_t b = u == 0 ? round : (round + circle - u) % circle;
-        if (a >= stripes || b >= stripes) continue;  // the bye
-        pairs(stripe(a), stripe(b), sum_x + first(a), sum_y + first(a), sum_x + first(b),
-              sum_y + first(b));
+    const auto [t, nt] = this_thread();
+    std::uint64_t pair_count = 0;
+    for (std::size_t k = t; k < schedule.tasks(); k += nt) {
+      const StripeSchedule::Task task = schedule.task(k);
+      if (task.a >= stripes || task.b >= stripes) continue;  // the idle match
+      const std::size_t na = first(task.a + 1) - first(task.a);
+      const std::size_t nb = first(task.b + 1) - first(task.b);
+      if (task.a == task.b) {
+        self_pairs(stripe(task.a), lanes, sum_x + first(task.a), sum_y + first(task.a), one_sided,
+                   pairs);
+        pair_count += na * na;
+      } else {
+        schedule.wait(task.a, schedule.before(task.a, task.round));
+        schedule.wait(task.b, schedule.before(task.b, task.round));
+        pairs(stripe(task.a), stripe(task.b), sum_x + first(task.a), sum_y + first(task.a),
+              sum_x + first(task.b), sum_y + first(task.b));
+        schedule.finish(task.b);
+        pair_count += 2 * na * nb;
       }
+      schedule.finish(task.a);
     }
+    work[t] = pair_count;
   }
   (void)threads;
 }
@@ -230,26 +296,62 @@ void sum_by_stripes(const Bodies<T>& bodies, std::size_t lanes, int threads, dou
 // The direct kernels' sums of `bodies` (n of them, n_pad in its arrays:
 // whole vectors of `lanes`, massless after n) into (sum_x, sum_y): each pair once from
 // kStripesForPairs stripes on (sum_by_stripes), else each target's sum over
-// all sources, blocks of `block` targets side by side.
+// all sources, blocks of `block` targets in static slices. work[t]: the
+// pairs thread t evaluated (each pair evaluated once counts 2).
 template <typename T, typename OneSided, typename Pairs>
 void direct_sums(Bodies<T> bodies, std::size_t n_pad, std::size_t lanes, std::size_t block,
-                 int threads, double* sum_x, double* sum_y, OneSided one_sided, Pairs pairs) {
+                 int threads, double* sum_x, double* sum_y, std::uint64_t* work, OneSided one_sided,
+                 Pairs pairs) {
   const std::size_t n = bodies.n;
   if (sums_pairs_once(n)) {
     bodies.n = n_pad;
-    sum_by_stripes(bodies, lanes, threads, sum_x, sum_y, one_sided, pairs);
+    sum_by_stripes(bodies, lanes, threads, sum_x, sum_y, work, one_sided, pairs);
     return;
   }
-  const auto blocks = static_cast<std::ptrdiff_t>((n + block - 1) / block);
+  const std::size_t blocks = (n + block - 1) / block;
 #if defined(_OPENMP)
-#pragma omp parallel for schedule(static) num_threads(threads)
+#pragma omp parallel num_threads(threads)
 #endif
-  for (std::ptrdiff_t b = 0; b < blocks; ++b) {
-    const std::size_t i0 = static_cast<std::size_t>(b) * block;
-    one_sided(bodies.slice(i0, std::min(block, n - i0)), bodies, sum_x + i0, sum_y + i0);
+  {
+    const auto [t, nt] = this_thread();
+    std::uint64_t pair_count = 0;
+    for (std::size_t b = blocks * t / nt; b < blocks * (t + 1) / nt; ++b) {
+      const std::size_t i0 = b * block;
+      const std::size_t targets = std::min(block, n - i0);
+      one_sided(bodies.slice(i0, targets), bodies, sum_x + i0, sum_y + i0);
+      pair_count += targets * n;
+    }
+    work[t] = pair_count;
   }
   (void)threads;
 }
+
+// Bodies in float32 for the direct kernels, count of them (padded with body
+// 0's position and no mass): two-float positions in the frame (hi = the
+// nearest float, lo = the rest, exact), scaled masses.
+struct FloatBodies {
+  std::vector<float> x, y, x_lo, y_lo, m;
+  std::size_t n;
+  FloatBodies(std::span<const double> px, std::span<const double> py, std::span<const double> mass,
+              std::size_t count, const FloatFrame& frame)
+      : x(count), y(count), x_lo(count), y_lo(count), m(count, 0.0f), n(px.size()) {
+    for (std::size_t i = 0; i < count; ++i) {
+      const double u = (px[i < n ? i : 0] - frame.cx) * frame.scale;
+      const double v = (py[i < n ? i : 0] - frame.cy) * frame.scale;
+      x[i] = static_cast<float>(u);
+      y[i] = static_cast<float>(v);
+      x_lo[i] = static_cast<float>(u - static_cast<double>(x[i]));
+      y_lo[i] = static_cast<float>(v - static_cast<double>(y[i]));
+      if (i < n) m[i] = static_cast<float>(mass[i] * frame.mass_scale);
+    }
+  }
+  Bodies<float> bodies() const {
+    Bodies<float> b{x.data(), y.data(), m.data(), n};
+    b.x_lo = x_lo.data();
+    b.y_lo = y_lo.data();
+    return b;
+  }
+};
 
 // A copy of `from` padded to `count` with `pad`.
 template <typename T>
@@ -328,8 +430,9 @@ void reference_accelerations(std::span<const double> x, std::span<const double> 
 
 void direct_accelerations(std::span<const double> x, std::span<const double> y,
                           std::span<const double> mass, std::span<double> ax, std::span<double> ay,
-                          const Options& options) {
+                          const Options& options, DirectStats* stats) {
   detail::validate("nbody::direct_accelerations", x, y, mass, ax, ay, options);
+  if (stats != nullptr) *stats = DirectStats{x.size(), false, {}};
   const std::size_t n = x.size();
   if (n < 2) return;
   const detail::KernelTable& k = detail::kernels();
@@ -341,6 +444,7 @@ void direct_accelerations(std::span<const double> x, std::span<const double> y,
   const std::size_t n_pad = pairs_once ? (n + lanes - 1) / lanes * lanes : n;
   std::vector<double> sum_x(n_pad, 0.0);
   std::vector<double> sum_y(n_pad, 0.0);
+  std::vector<std::uint64_t> work(static_cast<std::size_t>(threads), 0);
   double factor = options.G;
 
   if (options.precision == Precision::float64) {
@@ -358,7 +462,7 @@ void direct_accelerations(std::span<const double> x, std::span<const double> y,
       bodies = {px.data(), py.data(), pm.data(), n};
     }
     detail::direct_sums(
-        bodies, n_pad, lanes, k.block64, threads, sum_x.data(), sum_y.data(),
+        bodies, n_pad, lanes, k.block64, threads, sum_x.data(), sum_y.data(), work.data(),
         [&](const detail::Bodies<double>& t, const detail::Bodies<double>& s, double* out_x,
             double* out_y) { k.accumulate64(t.x, t.y, t.n, s, p, out_x, out_y); },
         [&](const detail::Bodies<double>& a, const detail::Bodies<double>& b, double* a_x,
@@ -366,27 +470,10 @@ void direct_accelerations(std::span<const double> x, std::span<const double> y,
   } else {
     const detail::FloatFrame frame = detail::float_frame(x, y, mass, options.G);
     const detail::LawParams p = detail::law_params(options, frame);
-    // Two-float positions: hi = the nearest float, lo = the rest (exact);
-    // the padding is body 0's position with no mass.
-    std::vector<float> fx(n_pad);
-    std::vector<float> fy(n_pad);
-    std::vector<float> fx_lo(n_pad);
-    std::vector<float> fy_lo(n_pad);
-    std::vector<float> fm(n_pad, 0.0f);
-    for (std::size_t i = 0; i < n_pad; ++i) {
-      const double px = (x[i < n ? i : 0] - frame.cx) * frame.scale;
-      const double py = (y[i < n ? i : 0] - frame.cy) * frame.scale;
-      fx[i] = static_cast<float>(px);
-      fy[i] = static_cast<float>(py);
-      fx_lo[i] = static_cast<float>(px - static_cast<double>(fx[i]));
-      fy_lo[i] = static_cast<float>(py - static_cast<double>(fy[i]));
-      if (i < n) fm[i] = static_cast<float>(mass[i] * frame.mass_scale);
-    }
-    detail::Bodies<float> bodies{fx.data(), fy.data(), fm.data(), n};
-    bodies.x_lo = fx_lo.data();
-    bodies.y_lo = fy_lo.data();
+    const detail::FloatBodies f(x, y, mass, n_pad, frame);
+    const detail::Bodies<float> bodies = f.bodies();
     detail::direct_sums(
-        bodies, n_pad, lanes, k.block32, threads, sum_x.data(), sum_y.data(),
+        bodies, n_pad, lanes, k.block32, threads, sum_x.data(), sum_y.data(), work.data(),
         [&](const detail::Bodies<float>& t, const detail::Bodies<float>& s, double* out_x,
             double* out_y) { k.accumulate32(t.x, t.y, t.x_lo, t.y_lo, t.n, s, p, out_x, out_y); },
         [&](const detail::Bodies<float>& a, const detail::Bodies<float>& b, double* a_x,
@@ -397,6 +484,22 @@ void direct_accelerations(std::span<const double> x, std::span<const double> y,
     ax[i] += factor * sum_x[i];
     ay[i] += factor * sum_y[i];
   }
+  if (stats != nullptr) {
+    stats->pairs_once = pairs_once;
+    stats->work.push_back(ThreadWork{"pairs", "pairs", std::move(work)});
+  }
+}
+
+double ThreadWork::imbalance() const {
+  if (per_thread.empty()) return 0.0;
+  double total = 0.0;
+  double most = 0.0;
+  for (const std::uint64_t w : per_thread) {
+    total += static_cast<double>(w);
+    most = std::max(most, static_cast<double>(w));
+  }
+  if (total <= 0.0) return 0.0;
+  return most / (total / static_cast<double>(per_thread.size())) - 1.0;
 }
 
 const char* kernel_name() { return detail::kernels().name; }

@@ -71,9 +71,9 @@ constexpr std::size_t kGroupBlockVectors = 2;
 // Barnes-Hut, float64: a group's opened leaves re-tested for each block of
 // this many targets (BarnesHutOptions::target_block). With AVX2 a float64
 // multipole costs about four pairs and an opened leaf holds about 19
-// bodies: 1.13x a step at N = 10^6 (disk, 2 threads; RMS 6.4e-4 -> 6.9e-4);
-// with AVX-512 0.96-1.02x (within the noise), so it keeps the group's list.
-// Not measured for the other sets. docs/PERFORMANCE.md, issue 9 part 9.
+// bodies, so the blocks save work (at a little more error); with AVX-512
+// pairs are cheap enough that they do not, so it keeps the group's list.
+// The other sets keep it too.
 #if defined(__AVX__) && !defined(__AVX512F__)
 constexpr std::size_t kTargetBlock64 = 16;
 #else
@@ -263,8 +263,8 @@ template <typename V>
 // A = RN(5/3) - 1 ulp, S = 1.5 + 3 ulps (1 - 2^-44; RN(5/3) and 1.5 would
 // bias every force by -6e-8); double A = RN(5/3) + 1 ulp, S = 1.5 - 3 ulps
 // (1 + 2e-31). Elsewhere: the Newton steps' 2 / r, cubed (S = 1/8). A zmm
-// vrsqrt14ps is three uops (two of them on port 0; it issues every 2
-// cycles), so each operation saved around it counts.
+// vrsqrt14ps is three uops, two of them on port 0 (an FMA port), so each
+// operation saved around it counts.
 #if defined(__AVX512F__)
 template <typename V>
 constexpr bool kCubeFromEstimate = true;
@@ -593,11 +593,9 @@ struct VectorOf<float> {
 //
 // U = kPairVectors: three vectors of b a pass where the registers hold them
 // (AVX-512's 32): a's loads and stores serve three, and three independent
-// pair chains overlap. Float32, one thread, N = 16,000 (bench_nbody Direct):
-// 11 cycles for 16 pairs with two instead of 12.7 with one, and three 1.03x
-// two; four 0.99x (float64 the same for two, three and four). A stripe's
-// last vectors take a pass of two, then of one. AVX2 measured no better
-// with two: it keeps one.
+// pair chains overlap; four would spill. A stripe's last vectors take a
+// pass of two, then of one. AVX2 (16 registers) gains nothing from two: it
+// keeps one.
 #if defined(__AVX512F__)
 constexpr std::size_t kPairVectors = 3;
 #else

@@ -62,7 +62,7 @@ using calder::WorldDef;
 
 // Registers the kernels around every test: tests share one process, and some
 // (here and elsewhere) unregister them to get the plain loops.
-class MoversTest : public ::testing::Test {
+class BulkTest : public ::testing::Test {
  protected:
   void SetUp() override { calder::bulk::install(); }
   void TearDown() override { calder::bulk::install(); }
@@ -448,13 +448,13 @@ const FieldCase kFieldCases[] = {
      }},
 };
 
-class MoversBookTest : public ::testing::TestWithParam<FieldCase> {
+class BulkBookTest : public ::testing::TestWithParam<FieldCase> {
  protected:
   void SetUp() override { calder::bulk::install(); }
   void TearDown() override { calder::bulk::install(); }
 };
 
-TEST_P(MoversBookTest, StepsTheSameBitsAsThePlainLoops) {
+TEST_P(BulkBookTest, StepsTheSameBitsAsThePlainLoops) {
   const FieldCase& c = GetParam();
   const World start = random_world(c, 2024);
   ASSERT_EQ(calder::bulk::unsupported(start), "");
@@ -475,7 +475,7 @@ TEST_P(MoversBookTest, StepsTheSameBitsAsThePlainLoops) {
 // Short batches (7 steps of 1037 bodies is past the kernels' threshold of
 // 4096 body-steps) against the plain loops: a batch starting at any time
 // gives the same bits, the noise wind's time included.
-TEST_P(MoversBookTest, ShortBatchesGiveTheSameBits) {
+TEST_P(BulkBookTest, ShortBatchesGiveTheSameBits) {
   const FieldCase& c = GetParam();
   const World start = random_world(c, 77);
   World batched = start;
@@ -488,7 +488,7 @@ TEST_P(MoversBookTest, ShortBatchesGiveTheSameBits) {
 // The fast arithmetic runs the same physics: after a few steps every field
 // case stays close to book, but for the few bodies that a threshold (an edge,
 // a region, the fan's reach, a clamp) put on the other side by rounding.
-TEST_P(MoversBookTest, FastArithmeticFollowsBook) {
+TEST_P(BulkBookTest, FastArithmeticFollowsBook) {
   const FieldCase& c = GetParam();
   const World start = random_world(c, 11);
   World book = start;
@@ -516,7 +516,7 @@ TEST_P(MoversBookTest, FastArithmeticFollowsBook) {
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(MoversFields, MoversBookTest, ::testing::ValuesIn(kFieldCases), case_name);
+INSTANTIATE_TEST_SUITE_P(BulkFields, BulkBookTest, ::testing::ValuesIn(kFieldCases), case_name);
 
 // The batches World::step hands to recording_backend, which declines them
 // all (so the plain loops step).
@@ -529,7 +529,7 @@ bool recording_backend(const calder::StepBatch& batch, std::string* why_not) {
 
 // The sizes of the tests above reach the backend: else their book runs would
 // compare the plain loops with themselves.
-TEST_F(MoversTest, LargeStepsGoToTheBackend) {
+TEST_F(BulkTest, LargeStepsGoToTheBackend) {
   World world = random_world(kFieldCases[0], 1);
   recorded_batches.clear();
   calder::set_step_batch_backend(recording_backend);
@@ -543,14 +543,14 @@ TEST_F(MoversTest, LargeStepsGoToTheBackend) {
 
 // A world's own backend wins over the process default, and a world can have
 // the kernels with no default installed.
-TEST_F(MoversTest, BackendsArePerWorld) {
+TEST_F(BulkTest, BackendsArePerWorld) {
   World recorded = random_world(kFieldCases[0], 1);
   calder::WorldDef def;
   def.backends.step_batch = recording_backend;
   World own(def);
   own.add_bodies(calder::BodyColumns{.x = recorded.bodies().x, .y = recorded.bodies().y});
   recorded_batches.clear();
-  own.step(300);  // the default (movers, installed) is not asked
+  own.step(300);  // the default (calder::bulk, installed) is not asked
   EXPECT_EQ(recorded_batches, (std::vector<int>{World::kBatchSteps}));
 
   calder::set_step_batch_backend(nullptr);
@@ -572,7 +572,7 @@ TEST_F(MoversTest, BackendsArePerWorld) {
 
 // --- 2. the built-in scenes ----------------------------------------------------
 
-TEST_F(MoversTest, BuiltinScenesStepTheSameBitsThroughTheKernels) {
+TEST_F(BulkTest, BuiltinScenesStepTheSameBitsThroughTheKernels) {
   int covered = 0;
   std::vector<std::string> skipped;
   for (const calder::SceneInfo& info : calder::builtin_scenes()) {
@@ -619,14 +619,14 @@ World rain_world(std::size_t n, Arithmetic arithmetic, int threads) {
   return world;
 }
 
-TEST_F(MoversTest, ThreadCountChangesNoBit) {
+TEST_F(BulkTest, ThreadCountChangesNoBit) {
   constexpr std::size_t kDrops = 20000;  // 79 tiles, the last one partial
   for (const Arithmetic a : {Arithmetic::book, Arithmetic::float64, Arithmetic::float32}) {
     SCOPED_TRACE(arithmetic_name(a));
     World one = rain_world(kDrops, a, 1);
     one.step(200);
     const std::uint64_t expected = calder::state_hash(one);
-    for (const int threads : {1, 2, 3}) {
+    for (const int threads : {1, 2, 3, 7, 16}) {
       SCOPED_TRACE(threads);
       for (int run = 0; run < 2; ++run) {
         World world = rain_world(kDrops, a, threads);
@@ -636,6 +636,24 @@ TEST_F(MoversTest, ThreadCountChangesNoBit) {
       }
     }
   }
+}
+
+// Tiles go to threads in equal contiguous slices: at 16 threads each runs
+// within one tile of the mean (within 5% from 20 tiles a thread on).
+TEST_F(BulkTest, TilesAreSharedEvenlyAmongSixteenThreads) {
+  constexpr std::size_t kDrops = 100000;  // 391 tiles, the last one partial
+  World world = rain_world(kDrops, Arithmetic::float32, 16);
+  world.step(World::kBatchSteps);
+  const std::vector<std::size_t> tiles = calder::bulk::last_batch_tiles();
+  ASSERT_EQ(tiles.size(), 16u);
+  std::size_t total = 0;
+  std::size_t most = 0;
+  for (const std::size_t t : tiles) {
+    total += t;
+    most = std::max(most, t);
+  }
+  EXPECT_EQ(total, (kDrops + calder::bulk::kTile - 1) / calder::bulk::kTile);
+  EXPECT_LE(static_cast<double>(most) * 16.0 / static_cast<double>(total), 1.05);
 }
 
 // Per-drop errors against a reference run, sorted: |dx| and |dy| in px, and
@@ -668,7 +686,7 @@ Deviations deviations(const World& a, const World& reference) {
   return d;
 }
 
-TEST_F(MoversTest, FastArithmeticStaysCloseToBook) {
+TEST_F(BulkTest, FastArithmeticStaysCloseToBook) {
   constexpr std::size_t kDrops = 20000;
   World book = rain_world(kDrops, Arithmetic::book, 0);
   World f64 = rain_world(kDrops, Arithmetic::float64, 0);
@@ -679,7 +697,7 @@ TEST_F(MoversTest, FastArithmeticStaysCloseToBook) {
   const Deviations d64 = deviations(f64, book);
   const Deviations d32 = deviations(f32, book);
   std::printf(
-      "[ movers   ] rain, %zu drops, 200 steps (%s): float64 max |dx| %.3g px, max |dv|/v_t "
+      "[ bulk     ] rain, %zu drops, 200 steps (%s): float64 max |dx| %.3g px, max |dv|/v_t "
       "%.3g; float32 max |dx| %.3g px (all but 10 drops: %.3g px), max |dv|/v_t %.3g (all "
       "but 10: %.3g)\n",
       kDrops, calder::bulk::kernel_name(), d64.position_but(0), d64.velocity_but(0),
@@ -721,7 +739,7 @@ World custom_force_world(Arithmetic arithmetic) {
   return world;
 }
 
-TEST_F(MoversTest, CustomForceStepsThroughThePlainLoopsWithBookArithmetic) {
+TEST_F(BulkTest, CustomForceStepsThroughThePlainLoopsWithBookArithmetic) {
   const World start = custom_force_world(Arithmetic::book);
   EXPECT_NE(calder::bulk::unsupported(start).find("custom_force"), std::string::npos)
       << calder::bulk::unsupported(start);
@@ -733,7 +751,7 @@ TEST_F(MoversTest, CustomForceStepsThroughThePlainLoopsWithBookArithmetic) {
   EXPECT_EQ(kernels.world.step_count(), 300);
 }
 
-TEST_F(MoversTest, UnsupportedNamesWhatTheKernelsLack) {
+TEST_F(BulkTest, UnsupportedNamesWhatTheKernelsLack) {
   World world(WorldDef{});
   world.add_body({.position = {10.0, 10.0}});
   EXPECT_EQ(calder::bulk::unsupported(world), "");
@@ -774,7 +792,7 @@ void expect_refused(World& world, int count, std::initializer_list<const char*> 
   EXPECT_TRUE(same_bits(world, before));
 }
 
-TEST_F(MoversTest, Float32WithACustomForceThrowsAndChangesNothing) {
+TEST_F(BulkTest, Float32WithACustomForceThrowsAndChangesNothing) {
   World world = custom_force_world(Arithmetic::float32);
   expect_refused(world, 300, {"float32", "custom_force"});
   // Also when the world is small (a batch is not needed for its size).
@@ -786,7 +804,7 @@ TEST_F(MoversTest, Float32WithACustomForceThrowsAndChangesNothing) {
   expect_refused(small, 1, {"float32", "custom_force"});
 }
 
-TEST_F(MoversTest, Float32WithVelocityVerletThrows) {
+TEST_F(BulkTest, Float32WithVelocityVerletThrows) {
   World world = rain_world(1000, Arithmetic::float32, 0);
   world.set_integrator(calder::Integrator::velocity_verlet);
   expect_refused(world, 10, {"float32", "semi_implicit_euler"});
@@ -795,7 +813,7 @@ TEST_F(MoversTest, Float32WithVelocityVerletThrows) {
   expect_refused(sequential, 10, {"float64", "simultaneous"});
 }
 
-TEST_F(MoversTest, FastArithmeticWithoutTheKernelsThrows) {
+TEST_F(BulkTest, FastArithmeticWithoutTheKernelsThrows) {
   World f32 = rain_world(1000, Arithmetic::float32, 0);
   World f64 = rain_world(1000, Arithmetic::float64, 0);
   const PlainLoops plain;
@@ -823,7 +841,7 @@ World overflowing_world(const calder::Field& force, Vec2 velocity, Arithmetic ar
   return world;
 }
 
-TEST_F(MoversTest, BookOverflowThrowsLikeThePlainLoops) {
+TEST_F(BulkTest, BookOverflowThrowsLikeThePlainLoops) {
   struct Overflow {
     const char* name;
     calder::Field force;
@@ -852,7 +870,7 @@ TEST_F(MoversTest, BookOverflowThrowsLikeThePlainLoops) {
   }
 }
 
-TEST_F(MoversTest, Float32OverflowLeavesTheWorldAsAtTheStartOfTheBatch) {
+TEST_F(BulkTest, Float32OverflowLeavesTheWorldAsAtTheStartOfTheBatch) {
   // float32 overflows past 3.4e38: after k steps the lightest body (mass 0.5)
   // is at g k (k + 1), past that for k >= 92 with g = 4e34 (the first batch
   // fails) and for k >= 184 with g = 1e34 (the second batch fails).
@@ -876,7 +894,7 @@ TEST_F(MoversTest, Float32OverflowLeavesTheWorldAsAtTheStartOfTheBatch) {
   }
 }
 
-TEST_F(MoversTest, NegativeThreadsAreRefused) {
+TEST_F(BulkTest, NegativeThreadsAreRefused) {
   EXPECT_THROW(World(WorldDef{.threads = -1}), Error);
   World world(WorldDef{.threads = 2});
   EXPECT_THROW(world.set_threads(-1), Error);
@@ -885,7 +903,7 @@ TEST_F(MoversTest, NegativeThreadsAreRefused) {
 
 // --- 6. what runs -------------------------------------------------------------
 
-TEST_F(MoversTest, KernelNameAndThreads) {
+TEST_F(BulkTest, KernelNameAndThreads) {
   const std::set<std::string> names{"avx512", "avx2+fma", "sse2", "generic"};
   EXPECT_EQ(names.count(calder::bulk::kernel_name()), 1u) << calder::bulk::kernel_name();
   EXPECT_GE(calder::bulk::max_threads(), 1);
@@ -898,7 +916,7 @@ TEST_F(MoversTest, KernelNameAndThreads) {
 // keeps that fixed point exactly (v += (g - c v^2 / m) dt is still there), and
 // approaches it by a factor 1 - 2 sqrt(g c / m) dt a step (0.97 for the
 // heaviest drop below): after 2000 steps it is there to rounding.
-TEST_F(MoversTest, DropsReachTerminalVelocityInEveryArithmetic) {
+TEST_F(BulkTest, DropsReachTerminalVelocityInEveryArithmetic) {
   constexpr double kG = 0.1;
   constexpr double kC = 0.01;
   constexpr std::size_t kDrops = 4096;
@@ -931,7 +949,7 @@ TEST_F(MoversTest, DropsReachTerminalVelocityInEveryArithmetic) {
 // answer infinity, which once made the float32 drag infinite and the batch
 // fail. Drag that small holds no float: the bodies keep their speeds, as in
 // the plain loops.
-TEST_F(MoversTest, TinySpeedsStayFiniteInEveryArithmetic) {
+TEST_F(BulkTest, TinySpeedsStayFiniteInEveryArithmetic) {
   const auto speed_of = [](std::size_t i) {  // 8.7e-19 px a step down
     return std::ldexp(1.0, -60 - static_cast<int>(i % 90));
   };
@@ -992,7 +1010,7 @@ std::vector<HardQuotient> hard_quotients(std::size_t count, std::uint32_t seed) 
   return out;
 }
 
-TEST_F(MoversTest, BookQuotientsByTheMassAreTheDividesBits) {
+TEST_F(BulkTest, BookQuotientsByTheMassAreTheDividesBits) {
   const auto& kernels = calder::bulk::detail::kernels();
   std::vector<double> x, m;
   for (const HardQuotient& q : hard_quotients(40000, 9)) {
@@ -1050,7 +1068,7 @@ TEST_F(MoversTest, BookQuotientsByTheMassAreTheDividesBits) {
 
 // Drag that small, or masses that small, take the book kernels' divides (the
 // fused quotients' range): the same bits as the plain loops all the same.
-TEST_F(MoversTest, BookQuotientsOutsideTheFusedRangeGiveThePlainLoopsBits) {
+TEST_F(BulkTest, BookQuotientsOutsideTheFusedRangeGiveThePlainLoopsBits) {
   World start(WorldDef{.boundary = Boundary::none(), .arithmetic = Arithmetic::book});
   calder::Random rng(12);
   for (std::size_t i = 0; i < 2048; ++i) {

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// bench_movers: body-steps per second of the rain scene (built-in "rain":
+// bench_bulk: body-steps per second of the rain scene (built-in "rain":
 // gravity scaled by mass, quadratic drag, bounce on the radius off the walls
 // and the floor, no body-body collisions), canvas grown with N so that the
 // density stays that of the scene; items_per_second is body-steps per second.
@@ -9,10 +9,10 @@
 //                                2 float32)
 //   CalderPlain/N                the same world stepped by the plain loops
 //                                (no kernels: the book's loop in C++)
-//   SoaFloor/N/float32/threads   the movers' floor: the rain physics as a plain
+//   SoaFloor/N/float32/threads   calder::bulk's floor: the rain physics as a plain
 //                                SoA loop, -O3 -march=native -ffast-math
 //                                (float32 0: double, 1: float; the AVX2 copy
-//                                when the movers run their AVX2 kernels)
+//                                when calder::bulk runs its AVX2 kernels)
 //   Box2d/N/kind                 Box2D 2.4 (kind 0 circles with collisions
 //                                filtered out, 1 bodies without shapes)
 //
