@@ -428,7 +428,7 @@ Bytes world_section(const World& world) {
   return std::move(out.bytes);
 }
 
-Bytes random_section(World& world) {
+Bytes random_section(const World& world) {
   Out out;
   const Random& random = world.random();
   out.u32(random.state());
@@ -474,7 +474,7 @@ Bytes bodies_section(const World& world) {
 }
 
 // Everything but the scene and the progress: the world's sections.
-void put_world_sections(snapshot_detail::SectionWriter& w, World& world) {
+void put_world_sections(snapshot_detail::SectionWriter& w, const World& world) {
   w.add("WRLD", world_section(world));
   w.add("RAND", random_section(world));
   w.add("FLDS", fields_section(world));
@@ -585,14 +585,13 @@ Bytes to_snapshot(const Simulation& simulation) {
   snapshot_detail::SectionWriter w;
   w.add("SCEN", scene_section(simulation.scene()));
   w.add("SIMU", progress_section(simulation.progress()));
-  // const: the generators are only read (World has no const random()).
-  put_world_sections(w, const_cast<World&>(simulation.world()));
+  put_world_sections(w, simulation.world());
   return w.finish();
 }
 
 Bytes to_snapshot(const World& world) {
   snapshot_detail::SectionWriter w;
-  put_world_sections(w, const_cast<World&>(world));
+  put_world_sections(w, world);
   return w.finish();
 }
 

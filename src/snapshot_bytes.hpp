@@ -55,7 +55,7 @@ class Out {
     }
   }
   void raw(std::span<const std::uint8_t> b) { bytes.insert(bytes.end(), b.begin(), b.end()); }
-  void pad8() { bytes.resize(padded(bytes.size()), 0); }
+  void pad8() { bytes.resize(static_cast<std::size_t>(padded(bytes.size())), 0); }
   Bytes bytes;
 };
 

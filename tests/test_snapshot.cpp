@@ -37,8 +37,8 @@ void expect_same_state(const Simulation& a, const Simulation& b, const std::stri
   EXPECT_EQ(a.frame(), b.frame());
   EXPECT_EQ(a.world().time(), b.world().time());
   EXPECT_EQ(a.world().step_count(), b.world().step_count());
-  auto& ra = const_cast<calder::World&>(a.world()).random();
-  auto& rb = const_cast<calder::World&>(b.world()).random();
+  const calder::Random& ra = a.world().random();
+  const calder::Random& rb = b.world().random();
   EXPECT_EQ(ra.state(), rb.state());
   EXPECT_EQ(ra.spare_gaussian(), rb.spare_gaussian());
   // The next bytes saved are the same: fields, noise, mouse and scene too.

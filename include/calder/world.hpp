@@ -271,6 +271,7 @@ class World {
 
   // The world's p5-compatible generators, seeded with WorldDef::seed.
   Random& random() { return random_; }
+  [[nodiscard]] const Random& random() const { return random_; }
   Noise& noise() { return noise_; }
   [[nodiscard]] const Noise& noise() const { return noise_; }
 
