@@ -465,11 +465,7 @@ Bytes bodies_section(const World& world) {
   out.u32(columns);
   out.u32(0);
   for_each_column([&out](const char* name, std::span<const double>) { out.name16(name); }, b);
-  for_each_column(
-      [&out](const char*, std::span<const double> column) {
-        for (const double v : column) out.f64(v);
-      },
-      b);
+  for_each_column([&out](const char*, std::span<const double> column) { out.f64s(column); }, b);
   return std::move(out.bytes);
 }
 
@@ -535,7 +531,7 @@ void read_bodies(In& in, World& world, double time, std::int64_t steps) {
   for_each_column(
       [&in, n](const char*, std::vector<double>& column) {
         column.resize(static_cast<std::size_t>(n));
-        for (double& v : column) v = in.f64();
+        in.f64s(column);
       },
       data);
   BodyColumns spans;

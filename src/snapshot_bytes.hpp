@@ -44,6 +44,16 @@ class Out {
     std::memcpy(&u, &v, sizeof u);
     u64(u);
   }
+  // Many doubles at once (a body column): one resize, then the bytes.
+  void f64s(std::span<const double> values) {
+    std::size_t at = bytes.size();
+    bytes.resize(at + 8 * values.size());
+    for (const double v : values) {
+      std::uint64_t u = 0;
+      std::memcpy(&u, &v, sizeof u);
+      for (int i = 0; i < 8; ++i) bytes[at++] = static_cast<std::uint8_t>(u >> (8 * i));
+    }
+  }
   void str(const std::string& s) {
     u32(static_cast<std::uint32_t>(s.size()));
     bytes.insert(bytes.end(), s.begin(), s.end());
@@ -88,6 +98,16 @@ class In {
     double v = 0.0;
     std::memcpy(&v, &u, sizeof v);
     return v;
+  }
+  // values.size() doubles at once (a body column).
+  void f64s(std::span<double> values) {
+    const std::uint8_t* p = take(8 * values.size());
+    for (double& v : values) {
+      std::uint64_t u = 0;
+      for (int i = 7; i >= 0; --i) u = (u << 8U) | p[i];
+      std::memcpy(&v, &u, sizeof v);
+      p += 8;
+    }
   }
   bool boolean() {
     const std::uint8_t v = u8();
@@ -142,6 +162,11 @@ class SectionWriter {
   void add(const char (&tag)[5], Bytes payload) { sections_.emplace_back(tag, std::move(payload)); }
   Bytes finish() const {
     Out out;
+    std::size_t total = kHeaderBytes;
+    for (const auto& section : sections_) {
+      total += kSectionBytes + static_cast<std::size_t>(padded(section.second.size()));
+    }
+    out.bytes.reserve(total);
     for (const char c : kSnapshotMagic) out.u8(static_cast<std::uint8_t>(c));
     out.u32(kSnapshotVersion);
     out.u32(static_cast<std::uint32_t>(sections_.size()));

@@ -32,16 +32,29 @@ using snapshot_detail::kSnapshotMagic;
 using snapshot_detail::Out;
 using snapshot_detail::padded;
 
-constexpr std::array<std::uint32_t, 256> crc_table() {
-  std::array<std::uint32_t, 256> table{};
+// CRC-32 by slicing-by-8 (Kounavis and Berry, "A Systematic Approach to
+// Building High Performance Software-Based CRC Generators", 2005): table k
+// gives the CRC of a byte followed by k zero bytes, so that eight bytes are
+// folded per step instead of one.
+using CrcTables = std::array<std::array<std::uint32_t, 256>, 8>;
+constexpr CrcTables crc_tables() {
+  CrcTables t{};
   for (std::uint32_t n = 0; n < 256; ++n) {
     std::uint32_t c = n;
     for (int k = 0; k < 8; ++k) c = (c & 1U) != 0 ? 0xEDB88320U ^ (c >> 1U) : c >> 1U;
-    table[n] = c;
+    t[0][n] = c;
   }
-  return table;
+  for (std::size_t k = 1; k < 8; ++k) {
+    for (std::size_t n = 0; n < 256; ++n) t[k][n] = (t[k - 1][n] >> 8U) ^ t[0][t[k - 1][n] & 0xFFU];
+  }
+  return t;
 }
-constexpr std::array<std::uint32_t, 256> kCrcTable = crc_table();
+constexpr CrcTables kCrc = crc_tables();
+
+std::uint32_t load32(const std::uint8_t* p) {
+  return p[0] | (std::uint32_t{p[1]} << 8U) | (std::uint32_t{p[2]} << 16U) |
+         (std::uint32_t{p[3]} << 24U);
+}
 
 bool starts_with(std::span<const std::uint8_t> bytes, const char (&magic)[8]) {
   return bytes.size() >= 8 && std::memcmp(bytes.data(), magic, 8) == 0;
@@ -70,7 +83,16 @@ std::string errno_text() { return std::strerror(errno); }
 
 std::uint32_t crc32(std::span<const std::uint8_t> bytes, std::uint32_t crc) {
   crc = ~crc;
-  for (const std::uint8_t b : bytes) crc = kCrcTable[(crc ^ b) & 0xFFU] ^ (crc >> 8U);
+  const std::uint8_t* p = bytes.data();
+  std::size_t n = bytes.size();
+  for (; n >= 8; n -= 8, p += 8) {
+    const std::uint32_t lo = crc ^ load32(p);
+    const std::uint32_t hi = load32(p + 4);
+    crc = kCrc[7][lo & 0xFFU] ^ kCrc[6][(lo >> 8U) & 0xFFU] ^ kCrc[5][(lo >> 16U) & 0xFFU] ^
+          kCrc[4][lo >> 24U] ^ kCrc[3][hi & 0xFFU] ^ kCrc[2][(hi >> 8U) & 0xFFU] ^
+          kCrc[1][(hi >> 16U) & 0xFFU] ^ kCrc[0][hi >> 24U];
+  }
+  for (; n > 0; --n, ++p) crc = kCrc[0][(crc ^ *p) & 0xFFU] ^ (crc >> 8U);
   return ~crc;
 }
 
