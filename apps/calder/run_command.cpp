@@ -98,7 +98,7 @@ void run_frames(Simulation& simulation, std::int64_t frames, const std::string& 
 
 void run_command(const RunOptions& options, std::ostream& out, std::ostream& err) {
   if (options.trajectory) (void)trajectory_format(options.format, *options.trajectory);
-  check_snapshot_options(options.snapshot);
+  check_snapshot_options(options.snapshot, options.input.scene);
   const PreparedInput input = prepare_input(options.input);
   Simulation simulation = start_simulation(input);
   SnapshotOutputs snapshots(options.snapshot, simulation);

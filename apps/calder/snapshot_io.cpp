@@ -94,7 +94,13 @@ void add_snapshot_options(CLI::App& command, SnapshotOptions& options) {
       ->needs(archive);
 }
 
-void check_snapshot_options(const SnapshotOptions& options) {
+void check_snapshot_options(const SnapshotOptions& options, const std::string& source) {
+  std::error_code ec;
+  if (options.archive && std::filesystem::equivalent(*options.archive, source, ec)) {
+    throw InputError(
+        "--archive: " + detail::printable(source, 240) +
+        " is what this run starts from; an archive is written anew: give another file");
+  }
   for (const auto& [flag, path] :
        {std::pair{"--save", &options.save}, std::pair{"--archive", &options.archive}}) {
     if (*path && ((*path)->empty() || **path == "-")) {

@@ -42,8 +42,9 @@ struct SnapshotOptions {
 
 // Adds --save, --archive and --every to a verb (calder run).
 void add_snapshot_options(CLI::App& command, SnapshotOptions& options);
-// Checks them before anything is read. Throws InputError naming the flag.
-void check_snapshot_options(const SnapshotOptions& options);
+// Checks them before anything is read (`source`: the SCENE|FILE argument,
+// which --archive may not overwrite). Throws InputError naming the flag.
+void check_snapshot_options(const SnapshotOptions& options, const std::string& source);
 
 // The snapshot outputs of one run: the archive is created (and the start
 // written to it) and the --save file's temporary made when constructed, so

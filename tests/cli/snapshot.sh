@@ -167,6 +167,11 @@ case "$case_name" in
     expect_error 2 "--save"
     run_calder run example-2.1 --save no/such/folder/a.snap
     expect_error 2 "no/such/folder/a.snap"
+    expect_ok run example-2.1 --frames 10 --archive a.archive --every 5
+    cp a.archive kept.archive
+    run_calder run a.archive --frames 20 --archive a.archive
+    expect_error 2 "--archive" "a.archive"
+    cmp -s a.archive kept.archive || fail "the archive resumed from was overwritten"
     ;;
   *)
     fail "unknown case"
