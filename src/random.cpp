@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <optional>
 #include <string>
 
 #include "calder/detmath.hpp"
@@ -75,6 +76,17 @@ void Random::random_seed(double seed) {
   random_seed(to_uint32(seed));
 }
 
+std::optional<double> Random::spare_gaussian() const {
+  return has_spare_gaussian_ ? std::optional<double>(spare_gaussian_) : std::nullopt;
+}
+
+void Random::restore(std::uint32_t state, std::optional<double> spare_gaussian) {
+  if (spare_gaussian) detail::require_finite(*spare_gaussian, "Random::restore", "spare_gaussian");
+  state_ = state;
+  has_spare_gaussian_ = spare_gaussian.has_value();
+  spare_gaussian_ = spare_gaussian.value_or(0.0);
+}
+
 double Random::random() { return lcg_next(state_); }
 
 double Random::random(double max) {
@@ -129,6 +141,7 @@ Vec2 Vec2::random2d() { return default_random().random2d(); }
 // ----------------------------------------------------------------- Noise ---
 
 void Noise::noise_seed(std::uint32_t seed) {
+  seed_ = seed;
   std::uint32_t state = seed;
   for (double& value : table_) value = lcg_next(state);
 }

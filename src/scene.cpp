@@ -210,19 +210,29 @@ void Scene::validate() const {
 
 namespace {
 
-WorldDef seeded(WorldDef def, std::optional<std::uint32_t> seed) {
-  if (seed) def.seed = *seed;
-  return def;
+Scene seeded(Scene scene, std::optional<std::uint32_t> seed) {
+  scene.validate();
+  if (seed) scene.world.seed = *seed;
+  return scene;
 }
 
 }  // namespace
 
 Simulation::Simulation(Scene scene, std::optional<std::uint32_t> seed)
-    : scene_((scene.validate(), std::move(scene))),
-      world_(seeded(scene_.world, seed)),
+    : scene_(seeded(std::move(scene), seed)),
+      world_(scene_.world),
       last_mouse_(scene_.input.mouse) {
   for (const SceneField& f : scene_.fields) world_.add_field(f.field);
   reset_bodies();
+}
+
+Simulation::Simulation(Scene scene, World world, const SimulationProgress& progress)
+    : scene_(seeded(std::move(scene), std::nullopt)), world_(std::move(world)) {
+  if (world_.fields().size() != scene_.fields.size()) {
+    throw InvalidArgument("Simulation: the world has " + std::to_string(world_.fields().size()) +
+                          " fields, the scene " + std::to_string(scene_.fields.size()));
+  }
+  restore_progress(progress);
 }
 
 void Simulation::reset_bodies() {
@@ -341,6 +351,49 @@ void Simulation::step(const InputState& input) {
     world_.set_velocity(id, mouse_velocity);
   }
   ++frame_;
+}
+
+SimulationProgress Simulation::progress() const {
+  SimulationProgress p;
+  p.frame = frame_;
+  p.was_pressed = was_pressed_;
+  p.last_mouse = last_mouse_;
+  p.tossed = tossed_;
+  p.toss_offset = toss_offset_;
+  for (const Grab& g : grabs_) p.grabs.push_back({g.field, g.offset});
+  return p;
+}
+
+void Simulation::restore_progress(const SimulationProgress& p) {
+  const char* where = "Simulation::restore_progress";
+  if (p.frame < 0) {
+    throw InvalidArgument(std::string(where) + ": frame must be >= 0 (got " +
+                          std::to_string(p.frame) + ")");
+  }
+  for (const Vec2 v : {p.last_mouse, p.toss_offset}) {
+    detail::require_finite(v.x, where, "mouse");
+    detail::require_finite(v.y, where, "mouse");
+  }
+  if (p.tossed && *p.tossed >= world_.body_count()) {
+    throw InvalidArgument(std::string(where) + ": tossed body " + std::to_string(*p.tossed) +
+                          " of " + std::to_string(world_.body_count()));
+  }
+  std::vector<Grab> grabs;
+  for (const SimulationProgress::Grab& g : p.grabs) {
+    if (g.field >= scene_.fields.size() || !scene_.fields[g.field].binding.draggable) {
+      throw InvalidArgument(std::string(where) + ": field " + std::to_string(g.field) +
+                            " is not a draggable attractor");
+    }
+    detail::require_finite(g.offset.x, where, "grab offset");
+    detail::require_finite(g.offset.y, where, "grab offset");
+    grabs.push_back({g.field, g.offset});
+  }
+  frame_ = p.frame;
+  was_pressed_ = p.was_pressed;
+  last_mouse_ = p.last_mouse;
+  tossed_ = p.tossed;
+  toss_offset_ = p.toss_offset;
+  grabs_ = std::move(grabs);
 }
 
 void Simulation::step() {

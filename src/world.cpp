@@ -363,6 +363,28 @@ BodyView World::bodies() const {
   return view;
 }
 
+void World::restore(double time, std::int64_t step_count, std::span<const double> ax,
+                    std::span<const double> ay) {
+  detail::require_finite(time, "World::restore", "time");
+  if (step_count < 0) {
+    throw InvalidArgument("World::restore: step_count must be >= 0 (got " +
+                          std::to_string(step_count) + ")");
+  }
+  if (ax.size() != body_count() || ay.size() != body_count()) {
+    throw InvalidArgument("World::restore: ax and ay need " + std::to_string(body_count()) +
+                          " values (got " + std::to_string(ax.size()) + " and " +
+                          std::to_string(ay.size()) + ")");
+  }
+  for (std::size_t i = 0; i < ax.size(); ++i) {
+    detail::require_finite(ax[i], "World::restore", "ax");
+    detail::require_finite(ay[i], "World::restore", "ay");
+  }
+  bodies_.ax.assign(ax.begin(), ax.end());
+  bodies_.ay.assign(ay.begin(), ay.end());
+  time_ = time;
+  step_count_ = step_count;
+}
+
 FieldContext World::context(const BodyView& view, double time) const {
   FieldContext c;
   c.bodies = view;

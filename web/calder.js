@@ -80,14 +80,21 @@
     // count (bodies of the scenes made to scale), name (the file named in
     // error messages), mousePressed ('100-160' or [[100, 160], ...]), mouse
     // ([x, y]). On error it throws, and the scene that ran before keeps running.
+    // A snapshot's bytes (an ArrayBuffer or a Uint8Array, from snapshot() or
+    // `calder run --save`) go on from the frame where it was saved.
     load(source, options = {}) {
       if (!core) throw new Error('calder: not ready yet (await calder.ready)');
       const passed = {...options};
+      if (source instanceof ArrayBuffer) source = new Uint8Array(source);
+      if (source instanceof Uint8Array) {
+        passed.snapshot = source;
+        source = '';
+      }
       if (passed.mousePressed !== undefined) passed.mousePressed = frameRanges(passed.mousePressed);
       const next = guard(() => new core.Simulation(String(source), passed));
       if (sim) sim.delete();
       sim = next;
-      loaded = {source: String(source), options: {...options}};
+      loaded = {source: passed.snapshot ?? String(source), options: {...options}};
       for (const f of listeners) f('load');
       return api.info();
     },
@@ -143,6 +150,8 @@
     info: () => need().describe(),
     // The running scene as scene text.
     toml: () => guard(() => need().toml()),
+    // A snapshot of the run (docs/SNAPSHOTS.md): load(bytes) goes on from it bit for bit.
+    snapshot: () => guard(() => need().snapshot()),
     // What was loaded last: {source, options}.
     loaded: () => ({source: loaded.source, options: {...loaded.options}}),
     onChange(f) {

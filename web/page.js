@@ -210,14 +210,47 @@
       $('file').value = '';
       applyEditor();
     });
-    $('save').addEventListener('click', () => {
-      const blob = new Blob([$('editor').value], {type: 'application/toml'});
-      const link = document.createElement('a');
-      link.href = URL.createObjectURL(blob);
-      link.download = fileName;
-      link.click();
-      setTimeout(() => URL.revokeObjectURL(link.href), 1000);
+    $('save').addEventListener('click', () => download($('editor').value, fileName, 'application/toml'));
+    // A snapshot (docs/SNAPSHOTS.md) downloads; one dropped on the page goes on from its frame.
+    $('snapshot').addEventListener('click', () => {
+      const name = `${fileName.replace(/\.toml$/, '')}-${calder.frame()}.snap`;
+      download(calder.snapshot(), name, 'application/octet-stream');
     });
+    document.addEventListener('dragover', (e) => e.preventDefault());
+    document.addEventListener('drop', async (e) => {
+      e.preventDefault();
+      const file = e.dataTransfer && e.dataTransfer.files[0];
+      if (file) openDropped(file);
+    });
+  }
+
+  function download(data, name, type) {
+    const link = document.createElement('a');
+    link.href = URL.createObjectURL(new Blob([data], {type}));
+    link.download = name;
+    link.click();
+    setTimeout(() => URL.revokeObjectURL(link.href), 1000);
+  }
+
+  // A dropped snapshot runs on from where it was saved; a scene file goes to the editor.
+  async function openDropped(file) {
+    const bytes = new Uint8Array(await file.arrayBuffer());
+    if (new TextDecoder().decode(bytes.subarray(0, 8)) !== 'CALDSNAP') {
+      fileName = file.name;
+      $('file-name').textContent = fileName;
+      $('editor').value = new TextDecoder().decode(bytes);
+      applyEditor();
+      return;
+    }
+    try {
+      calder.load(bytes, {name: file.name});
+    } catch (err) {
+      showMessage(err.message);
+      return;
+    }
+    showMessage('');
+    fileName = `${calder.info().name}.toml`;
+    afterLoad();
   }
 
   async function main() {

@@ -22,7 +22,7 @@ namespace {
 template <class Writer>
 void write_run(Simulation& simulation, const PreparedInput& input, Writer& writer, OutputFile& file,
                const std::ostream& stream, const std::function<void(std::int64_t)>& after_frame) {
-  writer.write(0, simulation.world());
+  writer.write(simulation.frame(), simulation.world());  // 0, or a resumed snapshot's frame
   file.check_stream(stream);
   run_frames(simulation, input.scene.frames, input.source, [&](std::int64_t frame) {
     writer.write(frame, simulation.world());
@@ -48,6 +48,7 @@ CLI::App* add_run_command(CLI::App& app, RunOptions& options) {
                   "Trajectory format (default: json for a FILE ending in .json, else csv)")
       ->type_name("csv|json")
       ->needs(trajectory);
+  add_snapshot_options(*run, options.snapshot);
   run->footer(
       "Without --trajectory, prints the scene, frames, bodies, dt, seed, kinetic, potential and "
       "total energy, linear and angular momentum and the state hash.\n"
@@ -97,8 +98,10 @@ void run_frames(Simulation& simulation, std::int64_t frames, const std::string& 
 
 void run_command(const RunOptions& options, std::ostream& out, std::ostream& err) {
   if (options.trajectory) (void)trajectory_format(options.format, *options.trajectory);
+  check_snapshot_options(options.snapshot, options.input.scene);
   const PreparedInput input = prepare_input(options.input);
   Simulation simulation = start_simulation(input);
+  SnapshotOutputs snapshots(options.snapshot, simulation);
   const std::int64_t frames = input.scene.frames;
 
   // A terminating signal stops the run at the next frame (exit 128 + signal,
@@ -109,10 +112,12 @@ void run_command(const RunOptions& options, std::ostream& out, std::ostream& err
   const auto after_frame = [&](std::int64_t frame) {
     interrupt.check();
     progress.update(frame);
+    snapshots.after_frame(simulation);
   };
 
   if (!options.trajectory) {
     run_frames(simulation, frames, input.source, after_frame);
+    snapshots.finish(simulation);
     progress.finish();
     print_summary(out, simulation, input.effective_seed());
     return;
@@ -140,6 +145,7 @@ void run_command(const RunOptions& options, std::ostream& out, std::ostream& err
     if (!out) throw RunError("standard output: write failed");
   }
   file.commit();
+  snapshots.finish(simulation);
   progress.finish();
 }
 

@@ -10,6 +10,7 @@
 
 #include "calder/scene.hpp"
 #include "run_options.hpp"
+#include "snapshot_io.hpp"
 
 namespace CLI {
 class App;
@@ -26,6 +27,7 @@ struct RunOptions {
   InputOptions input;
   std::optional<std::string> trajectory;  // a path, or "-" for stdout
   std::optional<std::string> format;      // "csv" or "json"
+  SnapshotOptions snapshot;               // --save, --archive, --every
 };
 
 // Adds the `run` verb with its flags to the application.

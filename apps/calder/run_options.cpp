@@ -13,6 +13,7 @@
 #include "errors.hpp"
 #include "parse.hpp"
 #include "scene_source.hpp"
+#include "snapshot_io.hpp"
 #include "state_csv.hpp"
 
 namespace calder::app {
@@ -164,6 +165,7 @@ std::vector<BodyDef> bodies_from_state(const std::vector<StateRow>& rows, const 
 }
 
 PreparedInput prepare_input(const InputOptions& options) {
+  if (names_snapshot(options.scene)) return prepare_resume(options);
   const InputFlags flags = parse_input_flags(options);
   PreparedInput input;
   input.source = options.scene;
@@ -191,6 +193,7 @@ PreparedInput prepare_input(const InputOptions& options) {
 }
 
 Simulation start_simulation(const PreparedInput& input) {
+  if (input.resumed) return *input.resumed;
   std::optional<Simulation> simulation;
   try {
     simulation.emplace(input.scene, input.seed);

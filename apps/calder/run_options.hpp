@@ -75,12 +75,15 @@ struct PreparedInput {
   std::optional<std::uint32_t> seed;
   std::optional<std::vector<BodyDef>> bodies;  // from --state
   std::optional<std::string> state_path;
+  // A run resumed from a snapshot (snapshot_io.hpp): start_simulation returns it.
+  std::optional<Simulation> resumed;
 
   // The seed the run uses: --seed, or the scene's.
   [[nodiscard]] std::uint32_t effective_seed() const { return seed ? *seed : scene.world.seed; }
 };
 
-// Loads the scene, applies the flags, reads the --state file. Throws
+// Loads the scene, applies the flags, reads the --state file (or, for a
+// snapshot, prepare_resume of snapshot_io.hpp). Throws
 // InputError or calder::SceneFileError (bad input: exit 2).
 PreparedInput prepare_input(const InputOptions& options);
 

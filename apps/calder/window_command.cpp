@@ -25,6 +25,7 @@
 #include "errors.hpp"
 #include "parse.hpp"
 #include "progress.hpp"
+#include "snapshot_io.hpp"
 
 namespace calder::app {
 
@@ -385,6 +386,14 @@ void WindowApp::key(const SDL_KeyboardEvent& key) {
     case SDLK_g:
       if (!repeat) toggle_recording();
       break;
+    case SDLK_k:  // keep: a snapshot to go on from (calder window FILE, calder run FILE)
+      if (repeat) break;
+      try {
+        note("saved " + save_window_snapshot(simulation_, file_stem()));
+      } catch (const Error& e) {
+        warn(e.what());
+      }
+      break;
     case SDLK_PLUS:
     case SDLK_EQUALS:
     case SDLK_KP_PLUS:
@@ -519,7 +528,7 @@ void WindowApp::finish() {
 
 const char* window_help() {
   return "keys: space pause, . step, r reset, f forces, t trails, s save PNG, g record GIF, "
-         "+/- speed, q quit";
+         "k save snapshot, +/- speed, q quit";
 }
 
 Vec2 window_to_physics(double x, double y, double scale, Vec2 origin) {
@@ -582,7 +591,8 @@ CLI::App* add_window_command(CLI::App& app, WindowOptions& options) {
                   "the attractor, ...); with --mouse-pressed or --mouse the scripted input is "
                   "replayed instead.\n") +
       window_help() +
-      ".\ns saves calder-SCENE-FRAME.png and g records calder-SCENE-TIME.gif in the current "
+      ".\ns saves calder-SCENE-FRAME.png, k calder-SCENE-FRAME.snap (a snapshot: `calder window "
+      "FILE` opens it, r goes back to it) and g records calder-SCENE-TIME.gif in the current "
       "folder.\nWithout a display: 'calder: no display: ...' and exit 2.\n");
   return window;
 }

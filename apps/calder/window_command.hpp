@@ -12,7 +12,8 @@
 // --mouse-pressed or --mouse the scene's scripted input is replayed instead.
 //
 // Keys: space pause, . one step (paused), r reset, f forces, t trails,
-// s save a PNG, g start/stop a GIF, + / - speed (x2, /2; 1/8 to 8), q or Esc
+// s save a PNG, g start/stop a GIF, k save a snapshot (snapshot_io.hpp:
+// `calder window FILE` opens it), + / - speed (x2, /2; 1/8 to 8), q or Esc
 // quit.
 //
 // For automation: --frames N stops after N steps, --exit-after-seconds S

@@ -18,6 +18,7 @@
 
 #include <array>
 #include <cstdint>
+#include <optional>
 
 #include "calder/vec2.hpp"
 
@@ -54,6 +55,13 @@ class Random {
 
   // The raw 32-bit state, e.g. to save and restore a generator.
   [[nodiscard]] std::uint32_t state() const { return state_; }
+  // The second value of the last Box-Muller pair, kept for the next
+  // random_gaussian(); none when the next call draws a new pair.
+  [[nodiscard]] std::optional<double> spare_gaussian() const;
+  // Puts back a saved generator: its state and kept Gaussian value (a
+  // snapshot, calder/snapshot.hpp). Throws calder::Error for a kept value
+  // that is not finite.
+  void restore(std::uint32_t state, std::optional<double> spare_gaussian);
 
  private:
   std::uint32_t state_ = 0;
@@ -80,8 +88,15 @@ class Noise {
   // p5 noise(x, y, z) in [0, 1). Throws calder::Error for NaN or infinite input.
   [[nodiscard]] double noise(double x, double y = 0.0, double z = 0.0) const;
 
+  // What the generator is made of (its table follows from the seed): a
+  // snapshot saves these and puts them back with noise_seed and noise_detail.
+  [[nodiscard]] std::uint32_t seed() const { return seed_; }
+  [[nodiscard]] int octaves() const { return octaves_; }
+  [[nodiscard]] double falloff() const { return falloff_; }
+
  private:
   std::array<double, table_size> table_{};
+  std::uint32_t seed_ = 0;
   int octaves_ = 4;
   double falloff_ = 0.5;
 };

@@ -169,14 +169,36 @@ struct InputState {
   Vec2 mouse{};
 };
 
+// What a Simulation carries from one frame to the next besides its scene and
+// its world: the frame counter and the mouse as the last frame left it (held
+// or not, where, the body being tossed, the attractors being dragged). A
+// snapshot (calder/snapshot.hpp) saves it with the scene and the world.
+struct SimulationProgress {
+  struct Grab {
+    std::size_t field = 0;  // an attractor of the scene, dragged by the mouse
+    Vec2 offset{};          // from the mouse to the attractor
+  };
+  std::int64_t frame = 0;
+  bool was_pressed = false;
+  Vec2 last_mouse{};
+  std::optional<std::size_t> tossed;  // the body held by the mouse (PressAction::toss)
+  Vec2 toss_offset{};
+  std::vector<Grab> grabs;
+};
+
 // Runs a scene: builds the world (seeding the generator first, then drawing
 // the bodies in order, as p5's setup() would after randomSeed), and steps it
 // one frame at a time with the mouse's events applied first, as p5 fires
 // mousePressed / mouseDragged / mouseReleased before draw().
 class Simulation {
  public:
-  // seed replaces the scene's seed (calder run --seed).
+  // seed replaces the scene's seed (calder run --seed); scene().world.seed
+  // is then that seed.
   explicit Simulation(Scene scene, std::optional<std::uint32_t> seed = std::nullopt);
+  // Resumes a run (a snapshot, calder/snapshot.hpp): its scene, its world as
+  // it was (field k the scene's field k) and its progress; no setup is run.
+  // Throws calder::Error when they don't fit together (restore_progress).
+  Simulation(Scene scene, World world, const SimulationProgress& progress);
 
   // One frame with this input: press, drag and release events, the fields'
   // bindings, then one world step.
@@ -195,6 +217,13 @@ class Simulation {
   [[nodiscard]] const Scene& scene() const { return scene_; }
   // Frames stepped so far (0 right after setup).
   [[nodiscard]] std::int64_t frame() const { return frame_; }
+
+  // The frame counter and the mouse's state (SimulationProgress).
+  [[nodiscard]] SimulationProgress progress() const;
+  // Puts back a progress saved from a simulation of the same scene. Throws
+  // calder::Error, changing nothing, for a negative frame, a tossed body or a
+  // dragged field that this simulation doesn't have, or a non-finite value.
+  void restore_progress(const SimulationProgress& progress);
 
  private:
   // An attractor held by the mouse (not calder::Drag, the fluid-drag field).

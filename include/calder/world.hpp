@@ -266,14 +266,25 @@ class World {
   void set_threads(int threads);
   [[nodiscard]] double width() const { return def_.width; }
   [[nodiscard]] double height() const { return def_.height; }
+  // The settings the world was made with, as the setters above changed them.
+  [[nodiscard]] const WorldDef& def() const { return def_; }
 
   // The world's p5-compatible generators, seeded with WorldDef::seed.
   Random& random() { return random_; }
+  [[nodiscard]] const Random& random() const { return random_; }
   Noise& noise() { return noise_; }
   [[nodiscard]] const Noise& noise() const { return noise_; }
 
   // Read-only view of all bodies (contiguous arrays), e.g. for diagnostics.
   [[nodiscard]] BodyView bodies() const;
+
+  // Puts back what a snapshot (calder/snapshot.hpp) holds beyond the bodies'
+  // other columns, the fields and the generators: the clock, and the
+  // accelerations accumulated since the last update (add_bodies starts them
+  // at 0). Throws calder::InvalidArgument, changing nothing, for a value that
+  // is not finite, a negative step count or columns of another length.
+  void restore(double time, std::int64_t step_count, std::span<const double> ax,
+               std::span<const double> ay);
 
  private:
   std::size_t checked(BodyId id, const char* where) const;

@@ -94,6 +94,7 @@ void bind_vec2_random(py::module_& m);
 void bind_fields(py::module_& m);
 void bind_world(py::module_& m);
 void bind_scene_render(py::module_& m);
+void bind_snapshot(py::module_& m);
 
 }  // namespace calder::python
 

@@ -255,6 +255,17 @@ elseif(CASE STREQUAL "xvfb_keys")
   if(NOT frame STREQUAL "${stepped}")
     fail("expected the state at frame ${stepped}")
   endif()
+  # k (paused at that frame): a snapshot, named and printed, that the
+  # command goes on from with the window's state.
+  state_value(window_hash "state_hash ([0-9a-f]+)")
+  if(NOT out MATCHES "(^|\n)saved (calder-example-2\\.1-${stepped}\\.snap)\n")
+    fail("k: expected 'saved calder-example-2.1-${stepped}.snap'")
+  endif()
+  calder_run(run "${CMAKE_MATCH_2}" --frames ${stepped})
+  expect_success()
+  if(NOT out MATCHES "state hash +${window_hash}\n")
+    fail("k: the snapshot does not hold the window's state ${window_hash}")
+  endif()
   # f: the forces are drawn, with their legend at the top left.
   expect_image(out.png --size 640 240 --colored-near 40 30 40)
 else()

@@ -6,7 +6,7 @@
 #   window_xvfb.sh CALDER drag SCALE   drags example-2.7's attractor from (320, 120) to
 #                                      (200, 80) (canvas pixels); the window writes
 #                                      out.png and prints its state to state.txt
-#   window_xvfb.sh CALDER keys         presses s, g, f, space, g, q on example-2.1
+#   window_xvfb.sh CALDER keys         presses s, g, f, space, ., ., k, g, +, q on example-2.1
 #
 # Runs in the current folder; calder's stdout goes to state.txt, its stderr to
 # stderr.txt; every step is logged to log.txt.
@@ -97,7 +97,7 @@ case "$scenario" in
     xdotool windowfocus --sync "$wid" || xdotool windowfocus "$wid" || true
     sleep 0.2
     # Each key, then (once calder has had time to take it) the window's title.
-    for key in s g f space period period g plus q; do
+    for key in s g f space period period k g plus q; do
       xdotool key --clearmodifiers "$key"
       sleep 0.5
       log "key $key; title: $(xdotool getwindowname "$wid" 2>/dev/null || echo gone)"

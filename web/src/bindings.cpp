@@ -31,6 +31,7 @@
 #include "calder/render.hpp"
 #include "calder/scene.hpp"
 #include "calder/scene_file.hpp"
+#include "calder/snapshot.hpp"
 #include "calder/trajectory.hpp"
 #include "scene_file/names.hpp"
 
@@ -288,6 +289,14 @@ class WebSimulation {
     return out;
   }
 
+  // A snapshot of the run (docs/SNAPSHOTS.md), a Uint8Array of its own.
+  [[nodiscard]] val snapshot() const {
+    return guarded([&] {
+      const Bytes bytes = to_snapshot(simulation_);
+      return val(emscripten::typed_memory_view(bytes.size(), bytes.data())).call<val>("slice");
+    });
+  }
+
   // The running scene as scene text (calder::to_toml), seed and size included.
   [[nodiscard]] std::string toml() const {
     return guarded([&] {
@@ -300,6 +309,14 @@ class WebSimulation {
  private:
   Simulation make(const std::string& source, const val& options) {
     const val name = options["name"];
+    const val snapshot = options["snapshot"];  // a snapshot's bytes: the run goes on from it
+    if (!snapshot.isUndefined() && !snapshot.isNull()) {
+      Simulation resumed =
+          simulation_from_snapshot(emscripten::convertJSArrayToNumberVector<std::uint8_t>(snapshot),
+                                   name.isString() ? name.as<std::string>() : "snapshot");
+      seed_ = resumed.scene().world.seed;
+      return resumed;
+    }
     Scene scene = scene_from(source, name.isString() ? name.as<std::string>() : "scene.toml");
     const val seed = options["seed"];
     if (!seed.isUndefined() && !seed.isNull()) {
@@ -390,7 +407,8 @@ EMSCRIPTEN_BINDINGS(calder_web) {
       .function("view", &WebSimulation::view)
       .function("forces", &WebSimulation::forces)
       .function("describe", &WebSimulation::describe)
-      .function("toml", &WebSimulation::toml);
+      .function("toml", &WebSimulation::toml)
+      .function("snapshot", &WebSimulation::snapshot);
 }
 
 }  // namespace calder::web

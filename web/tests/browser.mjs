@@ -197,6 +197,39 @@ try {
         'a seed out of range: a message');
   await page.evaluate(() => (location.hash = '#example-2.5'));
 
+  // --- a snapshot downloaded, then dropped on the page: it goes on bit for bit ---
+  await open('?seed=42#exercise-2.7');
+  await pausedAtStart();
+  await frames(30);
+  const [snapshotDownload] = await Promise.all([page.waitForEvent('download'),
+                                                page.click('#snapshot')]);
+  const snapshotBytes = readFileSync(await snapshotDownload.path());
+  check(snapshotDownload.suggestedFilename() === 'exercise-2.7-30.snap' &&
+            snapshotBytes.subarray(0, 8).toString() === 'CALDSNAP',
+        `the snapshot button downloads exercise-2.7-30.snap (${snapshotDownload.suggestedFilename()})`);
+  const goneOn = await page.evaluate(() => {
+    calder.step(20);
+    return calder.stateHash();
+  });
+  await open('?seed=7#example-2.1');
+  await page.evaluate((bytes) => {
+    // As it loads (before the page's loop steps it): its frame, and 20 scripted frames on.
+    const stop = calder.onChange((what) => {
+      if (what !== 'load') return;
+      stop();
+      window.dropped = {frame: calder.frame(), hash: (calder.step(20), calder.stateHash())};
+    });
+    const transfer = new DataTransfer();
+    transfer.items.add(new File([new Uint8Array(bytes)], 'dropped.snap'));
+    document.body.dispatchEvent(new DragEvent('drop', {dataTransfer: transfer, bubbles: true}));
+  }, [...snapshotBytes]);
+  await page.waitForFunction(() => window.dropped !== undefined);
+  const dropped = await page.evaluate(() => window.dropped);
+  check(dropped.frame === 30 && dropped.hash === goneOn,
+        `a dropped snapshot goes on from frame ${dropped.frame} with the bits of the page's own run`);
+  check((await page.textContent('#description')).startsWith('exercise-2.7'),
+        "the dropped snapshot's scene is shown");
+
   // --- in the browser too, the native numbers: every scene, seed 1 ---
   {
     const names = await page.evaluate(() => calder.scenes().map((s) => s.name));
