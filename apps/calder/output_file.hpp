@@ -70,6 +70,7 @@ class OutputFile {
   std::optional<calder::OutputFile> file_;  // the atomic file itself (calder::render)
   std::unique_ptr<Buffer> buffer_;
   std::unique_ptr<std::ostream> out_;
+  std::size_t temporary_id_ = 0;  // registered with the interrupt watchdog
   bool committed_ = false;
 };
 

@@ -63,7 +63,7 @@ struct GifWriter::Impl {
   [[noreturn]] void gif_failed(const char* what) {
     failed = true;
     const int error = gif != nullptr ? gif->Error : 0;
-    throw Error("GifWriter: cannot " + std::string(what) + " '" + file.path() + "': " +
+    throw Error("GifWriter: cannot " + std::string(what) + " '" + detail::printable(file.path(), 240) + "': " +
                 (GifErrorString(error) != nullptr ? GifErrorString(error) : "giflib error"));
   }
   void check(int result, const char* what) {
@@ -116,6 +116,7 @@ GifWriter& GifWriter::operator=(GifWriter&& other) noexcept = default;
 
 int GifWriter::frame_count() const { return impl_->frames; }
 const std::string& GifWriter::path() const { return impl_->file.path(); }
+const std::string& GifWriter::temp_path() const { return impl_->file.temp_path(); }
 
 void GifWriter::add_frame(const Canvas& canvas) {
   Impl& d = *impl_;
