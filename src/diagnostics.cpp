@@ -68,7 +68,8 @@ double field_potential(const World& world, PairSum&& pairs) {
 }  // namespace
 
 double potential_energy(const World& world) {
-  return field_potential(world, [&](const AttractionLaw& law) { return potential_energy(world, law); });
+  return field_potential(world,
+                         [&](const AttractionLaw& law) { return potential_energy(world, law); });
 }
 
 double total_energy(const World& world) { return kinetic_energy(world) + potential_energy(world); }

@@ -130,7 +130,8 @@ void check_outputs(const std::vector<NamedPath>& inputs, const std::vector<Named
   const Identity folder = identity_of(frames->path);
   const auto check_inside = [&](const NamedPath& p, const char* what) {
     if (same(identity_of(p.path), folder) || inside(p.path, folder)) {
-      throw InputError(named(p) + ": is inside " + named(*frames) + ", which the frames replace as a whole; " + what);
+      throw InputError(named(p) + ": is inside " + named(*frames) +
+                       ", which the frames replace as a whole; " + what);
     }
   };
   for (const NamedPath& out : outputs) check_inside(out, "write it elsewhere");
@@ -158,9 +159,9 @@ FrameFolder::FrameFolder(std::string dir) : dir_(std::move(dir)) {
     const int fd = ::open(p.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
     if (fd < 0) {
       const int error = errno;
-      throw InputError("--png " + shown + ": cannot write PNG frames there: " +
-                       (error == ENOTDIR ? std::string("it is not a directory")
-                                         : system_message(error)));
+      throw InputError(
+          "--png " + shown + ": cannot write PNG frames there: " +
+          (error == ENOTDIR ? std::string("it is not a directory") : system_message(error)));
     }
     ::fstat(fd, &old);
     target_ = is_link ? opened_path(fd) : p.string();
@@ -288,8 +289,8 @@ void FrameFolder::write(const Canvas& canvas, std::int64_t index) {
     failed(e.what());
   }
   // Not flushed to disk one by one: commit() flushes the folder once.
-  const int fd = ::openat(staging_fd_, name, O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC,
-                          0644);
+  const int fd =
+      ::openat(staging_fd_, name, O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0644);
   if (fd < 0) failed(system_message(errno));
   (void)::fchmod(fd, 0644);
   std::size_t done = 0;

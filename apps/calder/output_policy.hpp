@@ -11,13 +11,13 @@
 // Paths in messages are shown escaped (shown_path), as in every error.
 #pragma once
 
+#include <sys/stat.h>
+#include <sys/types.h>
 #include <cstddef>
 #include <cstdint>
 #include <functional>
 #include <optional>
 #include <string>
-#include <sys/stat.h>
-#include <sys/types.h>
 #include <vector>
 
 namespace calder {

@@ -6,14 +6,14 @@
 
 #include <algorithm>
 #include <atomic>
-#include <filesystem>
-#include <thread>
-#include <vector>
-#include <system_error>
 #include <cmath>
 #include <csignal>
 #include <cstdio>
+#include <filesystem>
+#include <system_error>
+#include <thread>
 #include <utility>
+#include <vector>
 
 namespace calder::app {
 

@@ -164,7 +164,8 @@ CanvasSize canvas_size(const std::optional<std::string>& size,
 void check_output_path(const std::string& flag, const std::string& path) {
   if (path.empty()) throw InputError(flag + ": the file name is empty");
   std::error_code ec;
-  if (fs::is_directory(path, ec)) throw InputError(shown_path(path) + ": is a directory, not a file");
+  if (fs::is_directory(path, ec))
+    throw InputError(shown_path(path) + ": is a directory, not a file");
   const fs::path target(path);
   const fs::path directory = target.has_parent_path() ? target.parent_path() : fs::path(".");
   if (!fs::is_directory(directory, ec)) {
@@ -272,8 +273,8 @@ void report_written(std::ostream& out, const Canvas& canvas, std::int64_t frames
 
 // The work of the drawings: each image's HUD energy (bounded pairs) and
 // force overlay (each field on each body), on top of the frames'.
-WorkExtras render_work(const Simulation& simulation, const RenderStyle& style,
-                       std::int64_t frames, std::int64_t every) {
+WorkExtras render_work(const Simulation& simulation, const RenderStyle& style, std::int64_t frames,
+                       std::int64_t every) {
   const World& world = simulation.world();
   const auto n = static_cast<double>(world.body_count());
   WorkExtras extras;

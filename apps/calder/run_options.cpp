@@ -1,16 +1,16 @@
 // SPDX-License-Identifier: MIT
 #include "run_options.hpp"
 
-#include <CLI/CLI.hpp>
 #include <pthread.h>
+#include <CLI/CLI.hpp>
 
 #include <algorithm>
-#include <condition_variable>
-#include <mutex>
-#include <thread>
 #include <cmath>
+#include <condition_variable>
 #include <cstdio>
+#include <mutex>
 #include <span>
+#include <thread>
 #include <utility>
 #include <variant>
 
@@ -101,8 +101,8 @@ double run_work(const Scene& scene, std::size_t bodies) {
   for (const SceneField& f : scene.fields) {
     if (const auto* mutual = std::get_if<MutualAttraction>(&f.field)) {
       if (!mutual->enabled) continue;
-      per_frame += mutual->method == NBodyMethod::barnes_hut ? barnes_hut_work(n, mutual->theta)
-                                                             : n * n;
+      per_frame +=
+          mutual->method == NBodyMethod::barnes_hut ? barnes_hut_work(n, mutual->theta) : n * n;
     }
   }
   return per_frame * static_cast<double>(std::max<std::int64_t>(scene.frames, 1));
@@ -252,7 +252,8 @@ void check_world_work(const PreparedInput& input, const Simulation& simulation,
       if (clustered == 0.0) clustered = coincident_work(world.bodies().x, world.bodies().y);
     }
   }
-  const double work = run_work(input.scene, n) + clustered * frames + extras.per_image * extras.images + extras.once;
+  const double work = run_work(input.scene, n) + clustered * frames +
+                      extras.per_image * extras.images + extras.once;
   if (work > max_run_work) {
     refuse_work(input.source, n, input.scene.frames, work,
                 clustered > 0.0 ? ", with bodies that share a point" : ", with diagnostics");

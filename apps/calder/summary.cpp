@@ -2,8 +2,8 @@
 #include "summary.hpp"
 
 #include <array>
-#include <cmath>
 #include <cinttypes>
+#include <cmath>
 #include <cstdio>
 #include <functional>
 #include <optional>

@@ -12,8 +12,8 @@
 #include <cstdio>
 #include <cstdlib>
 #include <ctime>
-#include <memory>
 #include <filesystem>
+#include <memory>
 #include <string>
 #include <variant>
 
@@ -597,7 +597,8 @@ void window_command(const WindowOptions& options, std::ostream& out, std::ostrea
   const PreparedInput input = prepare_input(options.input);
   if (options.screenshot) {
     std::vector<NamedPath> inputs;
-    if (std::filesystem::is_regular_file(input.source)) inputs.push_back({"the scene file", input.source});
+    if (std::filesystem::is_regular_file(input.source))
+      inputs.push_back({"the scene file", input.source});
     if (input.state_path) inputs.push_back({"--state", *input.state_path});
     check_outputs(inputs, {{"--screenshot", *options.screenshot}}, std::nullopt);
   }

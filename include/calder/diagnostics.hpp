@@ -35,7 +35,7 @@ double total_energy(const World& world);
 // term per body. Throws calder::Error as potential_energy does.
 struct PotentialEstimate {
   double value = 0.0;
-  bool exact = true;              // every pair was summed
+  bool exact = true;               // every pair was summed
   std::uint64_t pairs_summed = 0;  // of the mutual attractions
   std::uint64_t pairs_total = 0;
 };

@@ -63,8 +63,9 @@ struct GifWriter::Impl {
   [[noreturn]] void gif_failed(const char* what) {
     failed = true;
     const int error = gif != nullptr ? gif->Error : 0;
-    throw Error("GifWriter: cannot " + std::string(what) + " '" + detail::printable(file.path(), 240) + "': " +
-                (GifErrorString(error) != nullptr ? GifErrorString(error) : "giflib error"));
+    throw Error(
+        "GifWriter: cannot " + std::string(what) + " '" + detail::printable(file.path(), 240) +
+        "': " + (GifErrorString(error) != nullptr ? GifErrorString(error) : "giflib error"));
   }
   void check(int result, const char* what) {
     if (result == GIF_ERROR) gif_failed(what);

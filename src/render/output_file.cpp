@@ -68,7 +68,7 @@ std::string foreign_owner_refusal(const std::string& path) {
   if (::lstat(path.c_str(), &info) != 0 || !folder_status(path, folder)) return std::string();
   if ((folder.st_mode & S_ISVTX) == 0) return std::string();
   if (info.st_uid == ::geteuid() || info.st_uid == folder.st_uid) return std::string();
-  const char* what = S_ISLNK(info.st_mode)  ? "the symbolic link"
+  const char* what = S_ISLNK(info.st_mode)   ? "the symbolic link"
                      : S_ISDIR(info.st_mode) ? "the folder"
                                              : "the file";
   return std::string(what) + " is another user's, in a shared (sticky) folder";

@@ -8,12 +8,12 @@
 #include <algorithm>
 #include <cmath>
 #include <csignal>
-#include <mutex>
 #include <cstdint>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <mutex>
 #include <new>
 #include <nlohmann/json.hpp>
 #include <optional>
@@ -477,7 +477,7 @@ TEST(CliWork, BudgetBoundsBarnesHutsInteractions) {
 
 TEST(CliWork, CoincidentBodiesAreCounted) {
   std::vector<double> x(1000, 1000.5), y(1000, 5.0);
-  EXPECT_EQ(calder::app::coincident_work(x, y), 1e6);  // one cell of 1000
+  EXPECT_EQ(calder::app::coincident_work(x, y), 1e6);                   // one cell of 1000
   for (std::size_t i = 0; i < 500; ++i) x[i] = static_cast<double>(i);  // 500 spread, 500 piled
   EXPECT_EQ(calder::app::coincident_work(x, y), 500.0 * 500.0);
   std::vector<double> spread(1000);
@@ -568,15 +568,16 @@ TEST(CliSummary, OverflowFailsNeverPrintsInfOrNan) {
     std::string name = std::to_string(trial);
     name += ".toml";
     const std::string path = dir.file(name);
-    std::ofstream(path) << "frames = " << pick({"0", "1", "2"}) << "\n[[bodies]]\nmass = "
-                        << pick({"1", "1e10", "1e300"}) << "\nposition = [" << pick({"0", "1e300"})
-                        << ", " << pick({"1", "1e300", "-1e300"}) << "]\nvelocity = ["
+    std::ofstream(path) << "frames = " << pick({"0", "1", "2"})
+                        << "\n[[bodies]]\nmass = " << pick({"1", "1e10", "1e300"})
+                        << "\nposition = [" << pick({"0", "1e300"}) << ", "
+                        << pick({"1", "1e300", "-1e300"}) << "]\nvelocity = ["
                         << pick({"0", "1e300", "1e154"}) << ", " << pick({"0", "1e200"})
                         << "]\n[[fields]]\ntype = \"gravity\"\ng = [0, 0.1]\nscale_by_mass = "
                         << pick({"true", "false"}) << "\n";
     const Result r = cli({"run", path.c_str()});
-    const bool printed_bad = r.out.find("inf") != std::string::npos ||
-                             r.out.find("nan") != std::string::npos;
+    const bool printed_bad =
+        r.out.find("inf") != std::string::npos || r.out.find("nan") != std::string::npos;
     EXPECT_FALSE(printed_bad) << r.out;
     if (r.status == 0) continue;
     ++failures;
@@ -640,14 +641,15 @@ TEST(CliOutputPolicy, ForeignOwnerRefusalOnlyInStickyFolders) {
 TEST(CliOutputPolicy, WriteProtectedAndDanglingLinksRefused) {
   TempDir dir;
   std::ofstream(dir.file("ro.csv")) << "old\n";
-  fs::permissions(dir.file("ro.csv"), fs::perms::owner_read | fs::perms::group_read |
-                                          fs::perms::others_read);
-  EXPECT_NE(message_of([&] { calder::app::OutputFile f(dir.file("ro.csv")); })
-                .find("write-protected"),
-            std::string::npos);
+  fs::permissions(dir.file("ro.csv"),
+                  fs::perms::owner_read | fs::perms::group_read | fs::perms::others_read);
+  EXPECT_NE(
+      message_of([&] { calder::app::OutputFile f(dir.file("ro.csv")); }).find("write-protected"),
+      std::string::npos);
   fs::create_symlink(dir.file("nothing.csv"), dir.file("dangling.csv"));
-  EXPECT_NE(message_of([&] { calder::app::OutputFile f(dir.file("dangling.csv")); })
-                .find("a symbolic link to a missing file"),
+  EXPECT_NE(message_of([&] {
+              calder::app::OutputFile f(dir.file("dangling.csv"));
+            }).find("a symbolic link to a missing file"),
             std::string::npos);
   EXPECT_FALSE(fs::exists(dir.file("nothing.csv")));
   EXPECT_EQ(read_all(dir.file("ro.csv")), "old\n");
@@ -669,8 +671,8 @@ TEST(CliOutputPolicy, ReportedPathsAreEscaped) {
     }
     const std::string gif = dir.file(name + ".gif");
     const std::string png = dir.file(name);
-    const Result r = cli({"render", "example-2.1", "--frames", "1", "--gif", gif.c_str(), "--png",
-                          png.c_str()});
+    const Result r =
+        cli({"render", "example-2.1", "--frames", "1", "--gif", gif.c_str(), "--png", png.c_str()});
     for (const std::string* text : {&r.out, &r.err}) {
       for (const char c : *text) {
         EXPECT_FALSE(c != '\n' && (static_cast<unsigned char>(c) < 0x20 || c == 0x7f))
