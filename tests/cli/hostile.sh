@@ -331,7 +331,7 @@ case "$case_name" in
     printf 'frames = 0\n[[bodies]]\ncount = 100000\nmass = 1\nx = { min = 0, max = 640 }\ny = { min = 0, max = 360 }\n[[fields]]\ntype = "mutual_attraction"\nmethod = "barnes_hut"\n' > many.toml
     run_calder run many.toml
     [ "$rc" = 0 ] || fail "exit $rc"
-    expect_within 20000
+    expect_within 60000  # 5 * 10^9 pairs took minutes
     grep -q '^potential energy  ~.* (estimated from 33554432 of 4999950000 pairs, sampled)$' out ||
       fail "the estimate is not labelled: $(grep potential out)"
     grep -q '^total energy      ~' out || fail "the total is not labelled as estimated"
@@ -354,21 +354,22 @@ case "$case_name" in
       seq 1 2 240000 | sed 's/.*/[&, &],/'; echo ']'; } > ranges.toml
     run_calder run ranges.toml
     expect_error 2 "ranges.toml: 1 bodies for 10000000 frames" "over the budget"
-    expect_within 10000
+    expect_within 60000
     ;;
   work_many_fields) # scene file
     { printf 'frames = 10000000\n[[bodies]]\nmass = 1\nposition = [1, 1]\n'
       for _ in $(seq 120); do printf '[[fields]]\ntype="gravity"\n%.0s' $(seq 1000); done; } > fields.toml
     run_calder run fields.toml
     expect_error 2 "fields.toml: 1 bodies for 10000000 frames" "over the budget"
-    expect_within 20000
+    expect_within 60000
     ;;
   hud_many_bodies) # scene file
-    # The HUD's energy is bounded a frame (a sampled estimate shown with ~).
-    printf 'frames = 2\n[[bodies]]\ncount = 30000\nmass = 1\nx = { min = 0, max = 640 }\ny = { min = 0, max = 360 }\n[[fields]]\ntype = "mutual_attraction"\nmethod = "barnes_hut"\n' > hud.toml
+    # The HUD's energy is bounded a frame (a sampled estimate shown with ~):
+    # 5 images of 8 * 10^8 pairs each took minutes.
+    printf 'frames = 4\n[[bodies]]\ncount = 40000\nmass = 1\nx = { min = 0, max = 640 }\ny = { min = 0, max = 360 }\n[[fields]]\ntype = "mutual_attraction"\nmethod = "barnes_hut"\n' > hud.toml
     run_calder render hud.toml --hud --gif out.gif -q
     [ "$rc" = 0 ] || fail "exit $rc"
-    expect_within 10000
+    expect_within 30000
     ;;
   long_frame_signal) # scene file
     # One frame of exact mutual attraction among 60,000 bodies takes many
