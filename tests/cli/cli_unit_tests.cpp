@@ -708,3 +708,82 @@ TEST(CliInterruptDeathTest, WatchdogEndsALongComputation) {
       ::testing::ExitedWithCode(128 + SIGTERM), "calder: interrupted");
   EXPECT_FALSE(fs::exists(temp));
 }
+
+// --- PNG frames: all or none ------------------------------------------------------------
+
+namespace {
+
+// Every entry under `root` (relative path -> contents, "<dir>" for folders).
+std::vector<std::pair<std::string, std::string>> tree_of(const std::string& root) {
+  std::vector<std::pair<std::string, std::string>> entries;
+  for (const auto& e : fs::recursive_directory_iterator(root)) {
+    const std::string name = fs::relative(e.path(), root).string();
+    entries.emplace_back(name, e.is_directory() ? std::string("<dir>") : read_all(e.path()));
+  }
+  std::sort(entries.begin(), entries.end());
+  return entries;
+}
+
+}  // namespace
+
+// Property: whatever an existing --png folder holds (frames of an earlier
+// render, other files, folders), a render that succeeds leaves exactly its own
+// frames plus the other entries untouched, and a render that fails midway
+// leaves the folder exactly as it was; nothing is left beside it.
+TEST(CliFrames, AllOrNoneWhateverTheFolderHolds) {
+  TempDir dir;
+  const std::string state = dir.file("state.csv");
+  std::ofstream(state) << "x,y,vx,vy,mass\n1e308,0,1.7e308,0,1\n";  // overflows in step 1
+  std::uint64_t seed = 11;
+  const auto next = [&seed](std::uint64_t range) {
+    seed = seed * 6364136223846793005ULL + 1442695040888963407ULL;
+    return (seed >> 33U) % range;
+  };
+  for (int trial = 0; trial < 8; ++trial) {
+    const std::string frames = dir.file("frames");
+    fs::remove_all(frames);
+    fs::create_directory(frames);
+    const std::uint64_t old_frames = next(6);
+    for (std::uint64_t k = 0; k < old_frames; ++k) {
+      char name[32];
+      std::snprintf(name, sizeof name, "frame-%06llu.png", static_cast<unsigned long long>(k));
+      std::ofstream(frames + "/" + name) << "old frame " << k;
+    }
+    if (next(2) == 1) std::ofstream(frames + "/notes.txt") << "keep " << trial;
+    if (next(2) == 1) {
+      fs::create_directory(frames + "/sub");
+      std::ofstream(frames + "/sub/deep.txt") << "deep";
+    }
+    const auto before = tree_of(frames);
+    const bool fail = next(2) == 1;
+    const std::string count = std::to_string(next(4));
+    const Result r = fail ? cli({"render", "example-2.8", "--state", state.c_str(), "--png",
+                                 frames.c_str(), "-q"})
+                          : cli({"render", "example-2.1", "--frames", count.c_str(), "--png",
+                                 frames.c_str(), "-q"});
+    std::vector<std::string> left;
+    for (const auto& e : fs::directory_iterator(dir.file(""))) {
+      const std::string name = e.path().filename().string();
+      if (name != "frames" && name != "state.csv") left.push_back(name);
+    }
+    EXPECT_TRUE(left.empty()) << "trial " << trial << ": " << left.front();
+    if (fail) {
+      EXPECT_EQ(r.status, 1) << r.err;
+      EXPECT_EQ(tree_of(frames), before) << "trial " << trial;
+      continue;
+    }
+    ASSERT_EQ(r.status, 0) << r.err;
+    auto expected = before;
+    std::erase_if(expected, [](const auto& e) { return e.first.starts_with("frame-"); });
+    auto after = tree_of(frames);
+    std::size_t new_frames = 0;
+    std::erase_if(after, [&](const auto& e) {
+      if (!e.first.starts_with("frame-")) return false;
+      EXPECT_EQ(e.second.substr(1, 3), "PNG") << e.first;  // this render's, not an old one
+      ++new_frames;
+      return true;
+    });
+    EXPECT_EQ(after, expected) << "trial " << trial;
+    EXPECT_EQ(new_frames, std::stoul(count) + 1) << "trial " << trial;
+  }
+}
