@@ -512,6 +512,7 @@ case "$case_name" in
     ;;
   png_one_sync)
     # The frames are flushed to disk once a render, not once a frame.
+    command -v strace > /dev/null || fail "strace is needed (Debian package strace, scripts/setup)"
     syncs=$(strace -f -c -e trace=fsync,fdatasync,syncfs "$calder" render example-2.1 --frames 60 --png frames -q 2>&1 >/dev/null |
       awk '$NF ~ /^(fsync|fdatasync|syncfs)$/ { n += $4 } END { print n + 0 }')
     [ "$(ls frames | wc -l)" = 61 ] || fail "not 61 frames"
