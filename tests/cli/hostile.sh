@@ -516,6 +516,7 @@ case "$case_name" in
     syncs=$(strace -f -c -e trace=fsync,fdatasync,syncfs "$calder" render example-2.1 --frames 60 --png frames -q 2>&1 >/dev/null |
       awk '$NF ~ /^(fsync|fdatasync|syncfs)$/ { n += $4 } END { print n + 0 }')
     [ "$(ls frames | wc -l)" = 61 ] || fail "not 61 frames"
+    [ "$syncs" -ge 1 ] || fail "strace counted no flush at all"
     [ "$syncs" -le 3 ] || fail "$syncs calls to fsync/fdatasync/syncfs for 61 frames"
     ;;
   escape_in_output_path)
