@@ -409,6 +409,24 @@ case "$case_name" in
     cmp -s expected.csv out.csv || fail "the capped run differs"
     expect_no_temporaries
     ;;
+  threads_refused) # scene file
+    # Thread stacks of 2 GB (ulimit -s) under 1.5 GB of address space: the
+    # second thread can't start. Refused up front with one line, nothing
+    # written, rather than OpenMP's abort with the temporary left behind.
+    printf 'frames = 3\n[world]\nthreads = 2\n[[bodies]]\ncount = 500\nmass = 1\nx = { min = 0, max = 640 }\ny = { min = 0, max = 360 }\n[[fields]]\ntype = "mutual_attraction"\nmethod = "direct"\nthreads = 2\n' > threads.toml
+    limits='ulimit -s 2000000 && ulimit -v 1500000'
+    if (eval "$limits" && exec "$calder" --version) > /dev/null 2>&1; then
+      (eval "$limits" && exec "$calder" run threads.toml --trajectory out.csv) > out 2> err < /dev/null
+      rc=$?
+      expect_error 2 "threads.toml: cannot start 2 threads"
+      [ ! -e out.csv ] || fail "out.csv was written"
+    else
+      # A sanitizer's shadow memory needs more address space: the cap alone.
+      run_calder run threads.toml --trajectory out.csv
+      [ "$rc" = 0 ] || fail "exit $rc"
+    fi
+    expect_no_temporaries
+    ;;
   # --- outputs that the policy refuses, replaces, never appends to ---------------------------
   shm_replaced)
     "$calder" run example-2.1 --frames 20 --trajectory expected.json || fail "plain run failed"
