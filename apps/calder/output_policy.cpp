@@ -59,21 +59,25 @@ bool same(const Identity& a, const Identity& b) {
          a.name == b.name;
 }
 
-// Whether `path` lies inside the folder `folder` (at any depth), by the
-// identities of its parent folders as the kernel resolves them.
+// Whether `path` lies inside the folder `folder` (at any depth): the folders
+// above it, as the kernel reached its parent (opened_path), compared by
+// device and inode.
 bool inside(const std::string& path, const Identity& folder) {
   // A folder not made yet holds nothing.
   if (!folder.comparable || !folder.name.empty() || path.empty() || path == "-") return false;
-  std::error_code ec;
-  fs::path p = fs::absolute(path, ec);
-  if (ec) return false;
-  for (p = p.parent_path(); !p.empty(); p = p.parent_path()) {
+  const fs::path p(path);
+  const std::string parent = p.has_parent_path() ? p.parent_path().string() : std::string(".");
+  const int fd = ::open(parent.c_str(), O_PATH | O_DIRECTORY | O_CLOEXEC);
+  if (fd < 0) return false;
+  fs::path q = opened_path(fd);
+  ::close(fd);
+  for (; !q.empty(); q = q.parent_path()) {
     struct stat info {};
-    if (::stat(p.c_str(), &info) == 0 && info.st_dev == folder.device &&
+    if (::stat(q.c_str(), &info) == 0 && info.st_dev == folder.device &&
         info.st_ino == folder.inode) {
       return true;
     }
-    if (p == p.root_path()) break;
+    if (q == q.root_path()) break;
   }
   return false;
 }
@@ -141,8 +145,9 @@ void check_outputs(const std::vector<NamedPath>& inputs, const std::vector<Named
 FrameFolder::FrameFolder(std::string dir) : dir_(std::move(dir)) {
   if (dir_.empty()) throw InputError("--png: the folder name is empty");
   const std::string shown = quoted_path(dir_);
-  fs::path p = fs::path(dir_).lexically_normal();
-  if (!p.has_filename() && p.has_parent_path()) p = p.parent_path();  // "frames/"
+  std::string as_given = dir_;  // "frames/" names "frames"; nothing else is rewritten
+  while (as_given.size() > 1 && as_given.back() == '/') as_given.pop_back();
+  const fs::path p(as_given);
   const std::string name = p.filename().string();
   if (name.empty() || name == "." || name == "..") {
     throw InputError("--png " + shown +
