@@ -121,6 +121,9 @@ double coincident_work(std::span<const double> x, std::span<const double> y) {
   constexpr std::size_t kLeaf = 32;
   const std::size_t n = std::min(x.size(), y.size());
   if (n <= kLeaf) return 0.0;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!std::isfinite(x[i]) || !std::isfinite(y[i])) return 0.0;  // the first step fails anyway
+  }
   double x0 = x[0], x1 = x[0], y0 = y[0], y1 = y[0];
   for (std::size_t i = 1; i < n; ++i) {
     x0 = std::min(x0, x[i]);
@@ -129,7 +132,7 @@ double coincident_work(std::span<const double> x, std::span<const double> y) {
     y1 = std::max(y1, y[i]);
   }
   const double side = std::max(x1 - x0, y1 - y0);
-  if (!std::isfinite(side)) return 0.0;
+  if (!std::isfinite(side)) return 0.0;  // a spread of 1e308: no shared cell to speak of
   constexpr double kCells = 16777216.0;  // 2^24
   const double scale = side > 0.0 ? (kCells - 1.0) / side : 0.0;
   std::vector<std::uint64_t> cells(n);
