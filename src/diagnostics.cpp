@@ -1,9 +1,11 @@
 // SPDX-License-Identifier: MIT
 #include "calder/diagnostics.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <variant>
+#include <vector>
 
 #include "calder/world.hpp"
 
@@ -29,13 +31,18 @@ double potential_energy(const World& world, const AttractionLaw& law) {
   return sum;
 }
 
-double potential_energy(const World& world) {
+namespace {
+
+// The potential energy of the world's enabled conservative fields, in their
+// order; `pairs` gives a mutual attraction's pair sum.
+template <class PairSum>
+double field_potential(const World& world, PairSum&& pairs) {
   const BodyView b = world.bodies();
   double sum = 0.0;
   for (const Field& field : world.fields()) {
     if (const auto* mutual = std::get_if<MutualAttraction>(&field)) {
       if (!mutual->enabled) continue;
-      sum += potential_energy(world, mutual->law);
+      sum += pairs(mutual->law);
       if (mutual->central) {
         for (std::size_t i = 0; i < b.size(); ++i) {
           sum += attraction_potential(mutual->central->position.dist(b.position(i)),
@@ -58,7 +65,78 @@ double potential_energy(const World& world) {
   return sum;
 }
 
+}  // namespace
+
+double potential_energy(const World& world) {
+  return field_potential(world,
+                         [&](const AttractionLaw& law) { return potential_energy(world, law); });
+}
+
 double total_energy(const World& world) { return kinetic_energy(world) + potential_energy(world); }
+
+namespace {
+
+// splitmix64's step and finaliser (Steele, Lea, Flood 2014).
+std::uint64_t splitmix(std::uint64_t& state) {
+  std::uint64_t z = (state += 0x9e3779b97f4a7c15ULL);
+  z = (z ^ (z >> 30U)) * 0xbf58476d1ce4e5b9ULL;
+  z = (z ^ (z >> 27U)) * 0x94d049bb133111ebULL;
+  return z ^ (z >> 31U);
+}
+
+std::uint64_t pair_count(std::size_t n) {
+  const auto m = static_cast<std::uint64_t>(n);
+  return m < 2 ? 0 : m * (m - 1) / 2;
+}
+
+// The pair sum of `law` from `samples` pairs (i != j, uniform, fixed seed),
+// scaled to all pairs.
+double sampled_pair_potential(const BodyView& b, const AttractionLaw& law, std::uint64_t samples) {
+  const auto n = static_cast<std::uint64_t>(b.size());
+  std::uint64_t state = 0x706f74656e7469ULL;  // "potenti"
+  double sum = 0.0;
+  for (std::uint64_t k = 0; k < samples; ++k) {
+    const auto i = static_cast<std::size_t>(splitmix(state) % n);
+    auto j = static_cast<std::size_t>(splitmix(state) % (n - 1));
+    if (j >= i) ++j;
+    sum += attraction_potential(b.position(i).dist(b.position(j)), b.mass[i], b.mass[j], law);
+  }
+  return sum / static_cast<double>(samples) * static_cast<double>(pair_count(b.size()));
+}
+
+}  // namespace
+
+PotentialEstimate bounded_potential_energy(const World& world, std::uint64_t max_pairs) {
+  max_pairs = std::max<std::uint64_t>(max_pairs, 1);
+  const BodyView b = world.bodies();
+  const std::uint64_t pairs = pair_count(b.size());
+  PotentialEstimate result;
+  result.value = field_potential(world, [&](const AttractionLaw& law) {
+    result.pairs_total += pairs;
+    if (pairs <= max_pairs) {
+      result.pairs_summed += pairs;
+      return potential_energy(world, law);
+    }
+    result.pairs_summed += max_pairs;
+    result.exact = false;
+    return sampled_pair_potential(b, law, max_pairs);
+  });
+  return result;
+}
+
+std::uint64_t potential_energy_cost(const World& world, std::uint64_t max_pairs) {
+  const auto n = static_cast<std::uint64_t>(world.body_count());
+  std::uint64_t cost = 0;
+  for (const Field& field : world.fields()) {
+    const auto* mutual = std::get_if<MutualAttraction>(&field);
+    if (mutual != nullptr && mutual->enabled) {
+      cost += std::min(pair_count(world.body_count()), max_pairs) + n;
+    } else {
+      cost += n;
+    }
+  }
+  return cost;
+}
 
 Vec2 linear_momentum(const World& world) {
   const BodyView b = world.bodies();

@@ -12,12 +12,14 @@
 #include <cstring>
 #include <filesystem>
 #include <iostream>
+#include <mutex>
 #include <system_error>
 #include <utility>
 
 #include <calder/error.hpp>
 
 #include "errors.hpp"
+#include "output_policy.hpp"
 #include "progress.hpp"
 
 namespace calder::app {
@@ -65,16 +67,24 @@ OutputFile::OutputFile(std::string path) : path_(std::move(path)) {
 
   std::error_code ec;
   if (std::filesystem::is_directory(path_, ec)) {
-    throw InputError(path_ + ": is a directory, not a file");
+    throw InputError(shown_path(path_) + ": is a directory, not a file");
   }
   const std::filesystem::path target(path_);
   const std::filesystem::path directory =
       target.has_parent_path() ? target.parent_path() : std::filesystem::path(".");
   if (!std::filesystem::is_directory(directory, ec)) {
-    throw InputError(path_ + ": cannot create the file: directory '" + directory.string() +
-                     "' does not exist");
+    throw InputError(shown_path(path_) + ": cannot create the file: directory '" +
+                     shown_path(directory.string()) + "' does not exist");
   }
-  file_.emplace("", path_);  // a path that can't be created: bad input (exit 2)
+  {
+    // A path that can't be created, or that the output policy refuses: bad
+    // input (exit 2). Registered for the interrupt watchdog as it is made.
+    const std::lock_guard<std::mutex> lock(temporaries_lock());
+    file_.emplace("", path_);
+    if (!file_->temp_path().empty()) {
+      temporary_id_ = register_temporary(file_->temp_path(), false);
+    }
+  }
   if (!file_->temp_path().empty()) watch_signals(file_->temp_path());
   buffer_ = std::make_unique<Buffer>(*file_);
   out_ = std::make_unique<std::ostream>(buffer_.get());
@@ -107,6 +117,7 @@ void OutputFile::commit() {
   }
   committed_ = true;
   unwatch_signals();
+  if (temporary_id_ != 0) unregister_temporary(std::exchange(temporary_id_, 0));
 }
 
 std::string OutputFile::write_error() const {
@@ -127,6 +138,7 @@ void OutputFile::discard() noexcept {
   file_->discard();
   file_.reset();
   unwatch_signals();
+  if (temporary_id_ != 0) unregister_temporary(std::exchange(temporary_id_, 0));
 }
 
 OutputFile::Buffer::Buffer(calder::OutputFile& file) : file_(&file), data_(std::size_t{1} << 16) {

@@ -1,13 +1,15 @@
 // SPDX-License-Identifier: MIT
 // calder command: an output file that appears whole or not at all.
 //
-// calder::OutputFile decides how (see calder/output_file.hpp): a regular
-// file is written to a temporary in its folder, renamed over it only by
-// commit(), after everything was written and flushed; a symbolic link is
-// followed; a FIFO or a device is written directly. If commit() is never
-// reached (an error, an exception) the destructor removes the temporary; so
-// does every terminating signal while one exists (progress.hpp). The target is
-// never left half written. The path "-" means standard output.
+// calder::OutputFile decides how, by the output policy (calder/output_file.hpp,
+// apps/README.md "Output files"): a new or regular file is written to a
+// temporary in its folder, renamed over it only by commit(), after everything
+// was written and flushed; a link is followed by the kernel; a FIFO or a
+// device is written directly; what the policy protects is refused (exit 2).
+// If commit() is never reached (an error, an exception) the destructor
+// removes the temporary; so does every terminating signal while one exists
+// (progress.hpp, and its watchdog). The target is never left half written.
+// The path "-" means standard output.
 #pragma once
 
 #include <calder/output_file.hpp>
@@ -70,6 +72,7 @@ class OutputFile {
   std::optional<calder::OutputFile> file_;  // the atomic file itself (calder::render)
   std::unique_ptr<Buffer> buffer_;
   std::unique_ptr<std::ostream> out_;
+  std::size_t temporary_id_ = 0;  // registered with the interrupt watchdog
   bool committed_ = false;
 };
 

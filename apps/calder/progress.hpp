@@ -15,6 +15,8 @@
 #include <chrono>
 #include <csignal>
 #include <cstdint>
+#include <memory>
+#include <mutex>
 #include <ostream>
 #include <string>
 
@@ -74,7 +76,11 @@ class Interrupted : public RunError {
 };
 
 // While alive, the terminating signals only set a flag (the previous handlers
-// come back on destruction); check() throws Interrupted once one arrived.
+// come back on destruction); check() throws Interrupted once one arrived. The
+// loops of a job call check() once a frame; a frame, or a sum, that runs on
+// for interrupt_grace_ms after the signal is cut short by the guard's
+// watchdog thread: it removes the registered temporaries (below), prints
+// "calder: interrupted" and ends the process with 128 + the signal.
 class InterruptGuard {
  public:
   InterruptGuard();
@@ -86,6 +92,21 @@ class InterruptGuard {
 
  private:
   std::array<struct sigaction, terminating_signals.size()> old_{};
+  struct Watchdog;
+  std::unique_ptr<Watchdog> watchdog_;
 };
+
+// How long a job may take to stop by itself after a terminating signal.
+constexpr int interrupt_grace_ms = 400;
+
+// What a job created and must remove if it is stopped (a temporary file, a
+// staging folder with what is inside it), for the watchdog. Register a path
+// while holding temporaries_lock() across its creation, so that the watchdog
+// never races a file being created; unregister it once renamed or removed.
+std::mutex& temporaries_lock();
+std::size_t register_temporary(const std::string& path, bool folder);
+void unregister_temporary(std::size_t id);
+// The same, for a caller that holds temporaries_lock().
+void unregister_temporary_locked(std::size_t id);
 
 }  // namespace calder::app

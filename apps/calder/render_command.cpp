@@ -1,20 +1,25 @@
 // SPDX-License-Identifier: MIT
 #include "render_command.hpp"
 
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <CLI/CLI.hpp>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <memory>
+#include <mutex>
 #include <string>
 #include <system_error>
 #include <utility>
 #include <vector>
 
+#include "calder/diagnostics.hpp"
 #include "calder/error.hpp"
 #include "calder/trajectory.hpp"
 #include "errors.hpp"
+#include "output_policy.hpp"
 #include "parse.hpp"
 #include "progress.hpp"
 #include "run_command.hpp"
@@ -25,7 +30,16 @@ namespace fs = std::filesystem;
 
 namespace {
 
-std::string shown(const std::string& text) { return detail::printable(text, 240); }
+// Unregisters a temporary from the interrupt watchdog at the end of a scope.
+struct ForgetTemporary {
+  explicit ForgetTemporary(std::size_t temporary) : id(temporary) {}
+  std::size_t id = 0;
+  ForgetTemporary(const ForgetTemporary&) = delete;
+  ForgetTemporary& operator=(const ForgetTemporary&) = delete;
+  ~ForgetTemporary() {
+    if (id != 0) unregister_temporary(id);
+  }
+};
 std::string quoted(const std::string& text) { return "'" + detail::printable(text) + "'"; }
 
 std::int64_t parse_every(const std::string& text) {
@@ -51,112 +65,6 @@ std::optional<int> side(const std::string& text) {
   if (!value || *value < 1 || *value > max_image_side) return std::nullopt;
   return static_cast<int>(*value);
 }
-
-// The folder of PNG frames: created when missing. The frames are written to
-// a hidden staging folder inside it (".calder-frames.XXXXXX") and moved into
-// place only by commit(): a failed or interrupted run removes what it staged
-// (and the folders it created) and leaves the frames of an earlier run as they
-// were.
-class PngFolder {
- public:
-  explicit PngFolder(std::string dir) : dir_(std::move(dir)) {
-    if (dir_.empty()) throw InputError("--png: the folder name is empty");
-    std::error_code ec;
-    std::vector<fs::path> missing;  // deepest first
-    fs::path p = fs::path(dir_).lexically_normal();
-    if (!p.has_filename() && p.has_parent_path()) p = p.parent_path();  // "frames/"
-    const fs::path target = p;
-    while (!p.empty() && !fs::exists(fs::symlink_status(p, ec))) {
-      missing.push_back(p);
-      if (!p.has_parent_path() || p.parent_path() == p) break;
-      p = p.parent_path();
-    }
-    if (missing.empty() || missing.back() != p) {  // p exists: it must be a folder
-      if (!fs::is_directory(p, ec)) {
-        throw InputError(shown(dir_) + ": cannot write PNG frames there: " +
-                         (p == target ? std::string("it is not a directory")
-                                      : "'" + shown(p.string()) + "' is not a directory"));
-      }
-    }
-    for (auto it = missing.rbegin(); it != missing.rend(); ++it) {
-      if (!fs::create_directory(*it, ec) && ec) {
-        const std::string reason = ec.message();
-        remove_created();
-        throw InputError(shown(dir_) + ": cannot create the directory: " + reason);
-      }
-      created_.push_back(*it);
-    }
-    std::string staging = (fs::path(dir_) / ".calder-frames.XXXXXX").string();
-    if (::mkdtemp(staging.data()) == nullptr) {
-      const std::string reason = std::generic_category().message(errno);
-      remove_created();
-      throw InputError(shown(dir_) + ": cannot write PNG frames there: " + reason);
-    }
-    staging_ = staging;
-  }
-
-  ~PngFolder() {
-    if (!committed_) discard();
-  }
-  PngFolder(const PngFolder&) = delete;
-  PngFolder& operator=(const PngFolder&) = delete;
-
-  // Writes frame-<index>.png (to the staging folder). A failure on the first
-  // file is bad output (exit 2); later ones are a failed run (exit 1).
-  void write(const Canvas& canvas, std::int64_t index) {
-    char name[32];
-    std::snprintf(name, sizeof name, "frame-%06lld.png", static_cast<long long>(index));
-    const std::string path = (fs::path(staging_) / name).string();
-    try {
-      canvas.write_png(path);
-    } catch (const Error& e) {
-      std::string what = e.what();
-      const std::size_t at = what.find(staging_);  // name the frame as it will be called
-      if (at != std::string::npos) what.replace(at, staging_.size(), dir_);
-      if (names_.empty()) throw InputError("--png: " + what);
-      throw RunError("--png: " + what);
-    }
-    names_.emplace_back(name);
-  }
-
-  // Moves the staged frames into the folder (over earlier frames of the same names).
-  void commit() {
-    for (const std::string& name : names_) {
-      const std::string from = (fs::path(staging_) / name).string();
-      const std::string to = (fs::path(dir_) / name).string();
-      if (std::rename(from.c_str(), to.c_str()) != 0) {
-        throw RunError("--png: cannot move '" + shown(name) + "' into " + shown(dir_) + ": " +
-                       std::generic_category().message(errno));
-      }
-    }
-    std::error_code ec;
-    fs::remove(staging_, ec);
-    committed_ = true;
-  }
-
-  [[nodiscard]] std::size_t count() const { return names_.size(); }
-  [[nodiscard]] const std::string& dir() const { return dir_; }
-  [[nodiscard]] const std::string& name(std::size_t k) const { return names_.at(k); }
-
- private:
-  void discard() noexcept {
-    std::error_code ec;
-    if (!staging_.empty()) fs::remove_all(staging_, ec);
-    names_.clear();
-    remove_created();
-  }
-  void remove_created() noexcept {
-    std::error_code ec;
-    for (auto it = created_.rbegin(); it != created_.rend(); ++it) fs::remove(*it, ec);  // if empty
-    created_.clear();
-  }
-
-  std::string dir_;
-  std::string staging_;
-  std::vector<fs::path> created_;   // outermost first
-  std::vector<std::string> names_;  // staged frames
-  bool committed_ = false;
-};
 
 void draw(Canvas& canvas, const Simulation& simulation, const RenderStyle& style,
           const std::string& source) {
@@ -256,12 +164,13 @@ CanvasSize canvas_size(const std::optional<std::string>& size,
 void check_output_path(const std::string& flag, const std::string& path) {
   if (path.empty()) throw InputError(flag + ": the file name is empty");
   std::error_code ec;
-  if (fs::is_directory(path, ec)) throw InputError(path + ": is a directory, not a file");
+  if (fs::is_directory(path, ec))
+    throw InputError(shown_path(path) + ": is a directory, not a file");
   const fs::path target(path);
   const fs::path directory = target.has_parent_path() ? target.parent_path() : fs::path(".");
   if (!fs::is_directory(directory, ec)) {
-    throw InputError(path + ": cannot create the file: directory '" + directory.string() +
-                     "' does not exist");
+    throw InputError(shown_path(path) + ": cannot create the file: directory '" +
+                     shown_path(directory.string()) + "' does not exist");
   }
 }
 
@@ -345,19 +254,52 @@ void check_render_frames(const PreparedInput& input, const RenderOptions& option
   }
 }
 
-// What render wrote, one line per output (null: not chosen).
+// What render wrote, one line per output (null: not chosen); paths shown
+// escaped, as in every message.
 void report_written(std::ostream& out, const Canvas& canvas, std::int64_t frames,
-                    const PngFolder* png, const GifWriter* gif, double fps) {
+                    const FrameFolder* png, const GifWriter* gif, double fps) {
   const std::string what = std::to_string(frames) + (frames == 1 ? " frame" : " frames") + " of " +
                            size_text(canvas) + " pixels";
   if (png != nullptr) {
     out << "wrote " << png->name(0);
     if (png->count() > 1) out << " to " << png->name(png->count() - 1);
-    out << " in " << png->dir() << " (" << what << ")\n";
+    out << " in " << shown_path(png->dir()) << " (" << what << ")\n";
   }
   if (gif != nullptr) {
-    out << "wrote " << gif->path() << " (" << what << " at " << format_number(fps) << " fps)\n";
+    out << "wrote " << shown_path(gif->path()) << " (" << what << " at " << format_number(fps)
+        << " fps)\n";
   }
+}
+
+// The work of the drawings: each image's HUD energy (bounded pairs) and
+// force overlay (each field on each body), on top of the frames'.
+WorkExtras render_work(const Simulation& simulation, const RenderStyle& style, std::int64_t frames,
+                       std::int64_t every) {
+  const World& world = simulation.world();
+  const auto n = static_cast<double>(world.body_count());
+  WorkExtras extras;
+  extras.images = static_cast<double>(style.trails ? frames + 1 : frames / every + 1);
+  extras.per_image = n;  // each body drawn
+  if (style.show_hud) {
+    extras.per_image += static_cast<double>(potential_energy_cost(world, kHudEnergyPairs));
+  }
+  if (style.show_forces) {
+    extras.per_image += n * static_cast<double>(world.fields().size());
+  }
+  return extras;
+}
+
+// The inputs and outputs of a render, checked together (output_policy.hpp).
+void check_render_outputs(const RenderOptions& options, const PreparedInput& input) {
+  std::vector<NamedPath> inputs;
+  struct stat info {};
+  if (::stat(input.source.c_str(), &info) == 0) inputs.push_back({"the scene file", input.source});
+  if (input.state_path) inputs.push_back({"--state", *input.state_path});
+  std::vector<NamedPath> outputs;
+  if (options.gif) outputs.push_back({"--gif", *options.gif});
+  std::optional<NamedPath> frames;
+  if (options.png) frames = NamedPath{"--png", *options.png};
+  check_outputs(inputs, outputs, frames);
 }
 
 }  // namespace
@@ -374,9 +316,11 @@ void render_command(const RenderOptions& options, std::ostream& out, std::ostrea
   const PreparedInput input = prepare_input(options.input);
   const std::int64_t frames = input.scene.frames;
   check_render_frames(input, options, every);
+  check_render_outputs(options, input);
   const CanvasSize size = canvas_size(options.size, options.scale, input.scene);
   const RenderStyle style = make_style(input.scene, options.style);
   Simulation simulation = start_simulation(input);
+  check_world_work(input, simulation, render_work(simulation, style, frames, every));
 
   std::optional<Canvas> canvas;
   try {
@@ -388,10 +332,14 @@ void render_command(const RenderOptions& options, std::ostream& out, std::ostrea
   // next frame and the destructors remove the GIF's temporary and the staged frames.
   const InterruptGuard interrupt;
   std::optional<GifWriter> gif;
+  std::size_t gif_temporary = 0;
   if (options.gif) {
+    const std::lock_guard<std::mutex> lock(temporaries_lock());
     gif.emplace(*options.gif, canvas->pixel_width(), canvas->pixel_height(), fps);
+    if (!gif->temp_path().empty()) gif_temporary = register_temporary(gif->temp_path(), false);
   }
-  std::optional<PngFolder> png;
+  const ForgetTemporary forget_gif{gif_temporary};  // the GIF in place, or removed
+  std::optional<FrameFolder> png;
   if (options.png) png.emplace(*options.png);
 
   Progress progress(err, "render " + detail::printable(input.scene.name), frames,

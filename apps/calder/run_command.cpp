@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: MIT
 #include "run_command.hpp"
 
+#include <sys/stat.h>
+
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <cctype>
@@ -11,6 +13,7 @@
 #include "calder/world.hpp"
 #include "errors.hpp"
 #include "output_file.hpp"
+#include "output_policy.hpp"
 #include "progress.hpp"
 #include "summary.hpp"
 #include "trajectory_json.hpp"
@@ -29,6 +32,16 @@ void write_run(Simulation& simulation, const PreparedInput& input, Writer& write
     after_frame(frame);         // a signal first: SIGPIPE also fails the write
     file.check_stream(stream);  // the first failed write stops the run
   });
+}
+
+// The trajectory may be neither the scene file nor the --state file
+// (output_policy.hpp).
+void check_run_outputs(const std::string& trajectory, const PreparedInput& input) {
+  std::vector<NamedPath> inputs;
+  struct stat info {};
+  if (::stat(input.source.c_str(), &info) == 0) inputs.push_back({"the scene file", input.source});
+  if (input.state_path) inputs.push_back({"--state", *input.state_path});
+  check_outputs(inputs, {{"--trajectory", trajectory}}, std::nullopt);
 }
 
 }  // namespace
@@ -100,9 +113,14 @@ void run_command(const RunOptions& options, std::ostream& out, std::ostream& err
   if (options.trajectory) (void)trajectory_format(options.format, *options.trajectory);
   check_snapshot_options(options.snapshot, options.input.scene);
   const PreparedInput input = prepare_input(options.input);
+  if (options.trajectory) check_run_outputs(*options.trajectory, input);
   Simulation simulation = start_simulation(input);
   SnapshotOutputs snapshots(options.snapshot, simulation);
   const std::int64_t frames = input.scene.frames;
+  check_world_work(input, simulation,
+                   {.once = options.trajectory
+                                ? 0.0
+                                : static_cast<double>(summary_potential_cost(simulation.world()))});
 
   // A terminating signal stops the run at the next frame (exit 128 + signal,
   // the temporary removed); long runs show their progress on a terminal.
@@ -119,7 +137,8 @@ void run_command(const RunOptions& options, std::ostream& out, std::ostream& err
     run_frames(simulation, frames, input.source, after_frame);
     snapshots.finish(simulation);
     progress.finish();
-    print_summary(out, simulation, input.effective_seed());
+    print_summary(out, simulation, input.effective_seed(), input.source,
+                  [&interrupt] { interrupt.check(); });
     return;
   }
 

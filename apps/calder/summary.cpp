@@ -3,7 +3,9 @@
 
 #include <array>
 #include <cinttypes>
+#include <cmath>
 #include <cstdio>
+#include <functional>
 #include <optional>
 #include <string>
 
@@ -11,6 +13,7 @@
 #include "calder/error.hpp"
 #include "calder/trajectory.hpp"
 #include "calder/world.hpp"
+#include "errors.hpp"
 
 namespace calder::app {
 
@@ -40,31 +43,67 @@ std::string vector_text(Vec2 v) {
 
 }  // namespace
 
-void print_summary(std::ostream& out, const Simulation& simulation, std::uint32_t seed) {
+std::uint64_t summary_potential_cost(const World& world) {
+  return potential_energy_cost(world, summary_potential_pairs);
+}
+
+void print_summary(std::ostream& out, const Simulation& simulation, std::uint32_t seed,
+                   const std::string& source, const std::function<void()>& before_printing) {
   const World& world = simulation.world();
   const double kinetic = kinetic_energy(world);
-  std::optional<double> potential;
+  std::optional<PotentialEstimate> potential;
   std::string why_not;
   try {
-    potential = potential_energy(world);
+    potential = bounded_potential_energy(world, summary_potential_pairs);
   } catch (const Error& e) {
     why_not = e.what();
   }
+  const Vec2 momentum = linear_momentum(world);
+  const double angular = angular_momentum(world);
+  // Finite inputs can still overflow a diagnostic (masses of 1e10 at
+  // speeds of 1e300): the run failed, and nothing is printed as its result.
+  const auto check = [&](const char* what, double value) {
+    if (!std::isfinite(value)) {
+      throw RunError(source + ": frame " + std::to_string(simulation.frame()) + ": the " + what +
+                     " overflows (" + format_number(value) + "); the summary is not printed");
+    }
+  };
+  check("kinetic energy", kinetic);
+  if (potential) {
+    check("potential energy", potential->value);
+    check("total energy", kinetic + potential->value);
+  }
+  check("momentum", momentum.x);
+  check("momentum", momentum.y);
+  check("angular momentum", angular);
+  if (before_printing) before_printing();
+
   line(out, "scene", detail::printable(simulation.scene().name, 200));
   line(out, "frames", std::to_string(simulation.frame()));
   line(out, "bodies", std::to_string(world.body_count()));
   line(out, "dt", format_number(world.dt()));
   line(out, "seed", std::to_string(seed));
   line(out, "kinetic energy", format_number(kinetic));
-  if (potential) {
-    line(out, "potential energy", format_number(*potential));
-    line(out, "total energy", format_number(kinetic + *potential));
+  if (potential && potential->exact) {
+    line(out, "potential energy", format_number(potential->value));
+    line(out, "total energy", format_number(kinetic + potential->value));
+  } else if (potential) {
+    // Too many pairs to sum in bounded time: a sampled estimate, so labelled.
+    std::string text(1, '~');
+    text += format_number(potential->value);
+    text += " (estimated from " + std::to_string(potential->pairs_summed) + " of " +
+            std::to_string(potential->pairs_total) + " pairs, sampled)";
+    line(out, "potential energy", text);
+    text.assign(1, '~');
+    text += format_number(kinetic + potential->value);
+    text += " (estimated)";
+    line(out, "total energy", text);
   } else {
     line(out, "potential energy", std::string("n/a (").append(why_not).append(")"));
     line(out, "total energy", "n/a");
   }
-  line(out, "momentum", vector_text(linear_momentum(world)));
-  line(out, "angular momentum", format_number(angular_momentum(world)));
+  line(out, "momentum", vector_text(momentum));
+  line(out, "angular momentum", format_number(angular));
   line(out, "state hash", hex16(state_hash(world)));
 }
 

@@ -12,6 +12,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <ctime>
+#include <filesystem>
 #include <memory>
 #include <string>
 #include <variant>
@@ -23,6 +24,7 @@
 #include "calder/trajectory.hpp"
 #include "calder/world.hpp"
 #include "errors.hpp"
+#include "output_policy.hpp"
 #include "parse.hpp"
 #include "progress.hpp"
 #include "snapshot_io.hpp"
@@ -143,7 +145,7 @@ class WindowApp {
     return "calder-" + file_name_part(simulation_.scene().name);
   }
   void note(const std::string& line) {
-    out_ << line << '\n';
+    out_ << one_line(line) << '\n';
     out_.flush();
   }
   void warn(const std::string& line) {
@@ -603,6 +605,13 @@ void window_command(const WindowOptions& options, std::ostream& out, std::ostrea
   if (options.exit_after_seconds) (void)parse_seconds(*options.exit_after_seconds);
   if (options.screenshot) check_output_path("--screenshot", *options.screenshot);
   const PreparedInput input = prepare_input(options.input);
+  if (options.screenshot) {
+    std::vector<NamedPath> inputs;
+    if (std::filesystem::is_regular_file(input.source))
+      inputs.push_back({"the scene file", input.source});
+    if (input.state_path) inputs.push_back({"--state", *input.state_path});
+    check_outputs(inputs, {{"--screenshot", *options.screenshot}}, std::nullopt);
+  }
   // Installed before SDL starts, SDL leaves SIGINT and SIGTERM to it: every
   // terminating signal ends the window with exit 128 + signal, cleaned up.
   const InterruptGuard interrupt;

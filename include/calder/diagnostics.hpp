@@ -26,6 +26,25 @@ double potential_energy(const World& world);
 // kinetic_energy + potential_energy of the world's fields.
 double total_energy(const World& world);
 
+// The potential energy of the world's fields (as potential_energy(world)),
+// in bounded time: each enabled mutual attraction sums all its n (n - 1) / 2
+// pairs when they are at most `max_pairs`, and otherwise estimates their sum
+// from `max_pairs` pairs drawn at random with a fixed seed (the same world
+// gives the same estimate): the sampled mean times the number of pairs,
+// unbiased, but not exact (close pairs weigh much). The other fields cost one
+// term per body. Throws calder::Error as potential_energy does.
+struct PotentialEstimate {
+  double value = 0.0;
+  bool exact = true;               // every pair was summed
+  std::uint64_t pairs_summed = 0;  // of the mutual attractions
+  std::uint64_t pairs_total = 0;
+};
+PotentialEstimate bounded_potential_energy(const World& world, std::uint64_t max_pairs);
+
+// The pair terms bounded_potential_energy evaluates: min(pairs, max_pairs)
+// for each enabled mutual attraction, plus one per body for each other field.
+std::uint64_t potential_energy_cost(const World& world, std::uint64_t max_pairs);
+
 // Sum of m v.
 Vec2 linear_momentum(const World& world);
 

@@ -2,17 +2,22 @@
 // calder: output files that appear whole or not at all (part of
 // calder::render; the `calder` command's trajectories use it too).
 //
-// What happens depends on what the path names (docs/SCENES.md, "Output files"):
-//   - a regular file, or nothing yet: the data goes to a temporary file
-//     (".<name>.tmp-XXXXXX") in the same folder, which commit() flushes to
-//     disk and renames over the path. An existing file keeps its mode (and
-//     owner where allowed); a new one gets 0644, whatever the umask. Destroyed
-//     without commit(), it removes the temporary: the path is untouched.
-//   - a symbolic link: followed; its final target is written as above (the
-//     link stays a link).
-//   - a FIFO, a character device (/dev/null, /dev/full, a terminal) or a
-//     path under /dev/ or /proc/ (/dev/stdout): opened and written directly,
-//     in order, never replaced.
+// The output policy (apps/README.md, "Output files"). The path is opened by
+// the kernel (never created, never truncated), which follows links with its
+// own checks (permissions, fs.protected_symlinks); what it opened decides:
+//   - nothing yet: the data goes to a temporary file (".<name>.tmp-XXXXXX")
+//     in the same folder, which commit() flushes to disk and renames over the
+//     path; a new file gets 0644, whatever the umask. Destroyed without
+//     commit(), it removes the temporary: the path is untouched.
+//   - a regular file: replaced in the same way (never appended to), keeping
+//     its mode (and owner, where allowed); through a symbolic link, the file
+//     the kernel reached is replaced and the link stays. Refused: a file we
+//     may not write, a file without any write permission (0444, even for
+//     root), a file or a link that another user owns in a sticky folder (/tmp)
+//     unless the folder is theirs, a link to nothing.
+//   - a FIFO, a character device (/dev/null, /dev/full, a terminal), a socket,
+//     or a path naming an open descriptor (/dev/stdout, /dev/fd/N,
+//     /proc/self/fd/N): written directly, in order, never replaced.
 //   - a directory or a block device: refused.
 // Errors throw calder::Error naming the path, the operation and the
 // system's reason, e.g. "cannot write 'out.csv': No space left on device";
@@ -22,7 +27,19 @@
 #include <cstddef>
 #include <string>
 
+struct stat;
+
 namespace calder {
+
+// Why the output policy refuses what `path` names ("" when it doesn't): a
+// symbolic link, file or folder that another user than us and the folder's
+// owner owns in a sticky folder (/tmp): the cases of the kernel's
+// fs.protected_symlinks and fs.protected_regular, whatever their settings.
+std::string foreign_owner_refusal(const std::string& path);
+
+// The path the kernel reached when it opened `fd` (links followed with its
+// own checks), from /proc/self/fd; "" where /proc is not mounted.
+std::string opened_path(int fd);
 
 class OutputFile {
  public:
@@ -53,6 +70,9 @@ class OutputFile {
 
  private:
   [[nodiscard]] std::string prefix() const;
+  [[noreturn]] void refuse(const char* why) const;
+  void open_direct(int fd);
+  void create_temporary(const struct stat* existing);
 
   std::string who_;
   std::string path_;

@@ -39,6 +39,10 @@
 
 namespace calder {
 
+// The HUD's energy sums at most this many pairs of each mutual attraction per
+// frame (about 5 ms); past it the potential is a sampled estimate.
+inline constexpr std::uint64_t kHudEnergyPairs = std::uint64_t{1} << 18;
+
 // A colour; components in [0, 1], not premultiplied by alpha.
 struct Color {
   double r = 0.0;
@@ -104,7 +108,9 @@ struct RenderStyle {
   // sum) and a legend naming the fields by colour.
   bool show_forces = false;
   bool show_velocity = false;
-  // One line of text: frame, body count, total energy.
+  // One line of text: frame, body count, total energy (with more than
+  // kHudEnergyPairs pairs of mutual attraction, "~" and a sampled estimate:
+  // calder::bounded_potential_energy).
   bool show_hud = false;
   double force_scale = 100.0;   // canvas pixels per unit of force (the book's gravity 0.1: 10 px)
   double velocity_scale = 5.0;  // canvas pixels per pixel-per-frame of velocity
@@ -233,6 +239,8 @@ class GifWriter {
 
   [[nodiscard]] int frame_count() const;
   [[nodiscard]] const std::string& path() const;
+  // The temporary file written until finish() ("" when written directly).
+  [[nodiscard]] const std::string& temp_path() const;
 
  private:
   struct Impl;

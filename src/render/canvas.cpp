@@ -533,7 +533,11 @@ void Canvas::Impl::draw_text(const World& world, const RenderStyle& style, std::
   if (style.show_hud) {
     std::string energy;
     try {
-      energy = format_short(total_energy(world));
+      // Bounded per frame: past kHudEnergyPairs pairs the potential is a
+      // sampled estimate, shown with a leading '~'.
+      const PotentialEstimate potential = bounded_potential_energy(world, kHudEnergyPairs);
+      energy = potential.exact ? std::string() : std::string(1, '~');
+      energy += format_short(kinetic_energy(world) + potential.value);
     } catch (const Error&) {
       energy = "n/a";  // a custom attraction law has no potential
     }

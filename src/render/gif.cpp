@@ -63,8 +63,9 @@ struct GifWriter::Impl {
   [[noreturn]] void gif_failed(const char* what) {
     failed = true;
     const int error = gif != nullptr ? gif->Error : 0;
-    throw Error("GifWriter: cannot " + std::string(what) + " '" + file.path() + "': " +
-                (GifErrorString(error) != nullptr ? GifErrorString(error) : "giflib error"));
+    throw Error(
+        "GifWriter: cannot " + std::string(what) + " '" + detail::printable(file.path(), 240) +
+        "': " + (GifErrorString(error) != nullptr ? GifErrorString(error) : "giflib error"));
   }
   void check(int result, const char* what) {
     if (result == GIF_ERROR) gif_failed(what);
@@ -116,6 +117,7 @@ GifWriter& GifWriter::operator=(GifWriter&& other) noexcept = default;
 
 int GifWriter::frame_count() const { return impl_->frames; }
 const std::string& GifWriter::path() const { return impl_->file.path(); }
+const std::string& GifWriter::temp_path() const { return impl_->file.temp_path(); }
 
 void GifWriter::add_frame(const Canvas& canvas) {
   Impl& d = *impl_;

@@ -235,7 +235,7 @@ case "$case_name" in
     "$calder" render example-2.1 --frames 3 --png frames -q || fail "first render failed"
     before=$(md5sum frames/* | md5sum)
     for signal in HUP QUIT PIPE TERM; do
-      signal_midway "$signal" './frames/.calder-frames.*/frame-*.png' render example-2.2 --frames 9000 --png frames -q
+      signal_midway "$signal" './.calder-frames.frames.*/frame-*.png' render example-2.2 --frames 9000 --png frames -q
       [ "$(md5sum frames/* | md5sum)" = "$before" ] || fail "SIG$signal: the earlier frames changed"
       expect_no_temporaries frames
     done
@@ -323,6 +323,234 @@ case "$case_name" in
     printf 'name = "\xff"\n' > bad.toml
     run_calder run bad.toml
     expect_error 2 "bad.toml:1:9: the file is not valid UTF-8"
+    ;;
+  # --- costs that grow with the input, and long frames (issue: bounded, interruptible) ---
+  summary_many_bodies)
+    # 100,000 bodies under Barnes-Hut, no frame: the summary's potential energy
+    # would sum 5 * 10^9 pairs (minutes); it samples a bounded number, and says so.
+    printf 'frames = 0\n[[bodies]]\ncount = 100000\nmass = 1\nx = { min = 0, max = 640 }\ny = { min = 0, max = 360 }\n[[fields]]\ntype = "mutual_attraction"\nmethod = "barnes_hut"\n' > many.toml
+    run_calder run many.toml
+    [ "$rc" = 0 ] || fail "exit $rc"
+    expect_within 60000  # 5 * 10^9 pairs took minutes
+    grep -q '^potential energy  ~.* (estimated from 33554432 of 4999950000 pairs, sampled)$' out ||
+      fail "the estimate is not labelled: $(grep potential out)"
+    grep -q '^total energy      ~' out || fail "the total is not labelled as estimated"
+    ;;
+  work_theta_zero) # scene file
+    printf 'frames = 10000\n[[bodies]]\ncount = 20000\nmass = 1\nx = { min = 0, max = 640 }\ny = { min = 0, max = 360 }\n[[fields]]\ntype = "mutual_attraction"\nmethod = "barnes_hut"\ntheta = 0\n' > t0.toml
+    run_calder run t0.toml
+    expect_error 2 "t0.toml: 20000 bodies for 10000 frames" "over the budget of 1e12"
+    expect_within 2000
+    ;;
+  work_coincident) # scene file
+    # 10^5 bodies at one point: one leaf the tree can't split, 10^10 pairs a frame.
+    printf 'frames = 1000\n[[bodies]]\ncount = 100000\nmass = 1\nposition = [10, 10]\n[[fields]]\ntype = "mutual_attraction"\nmethod = "barnes_hut"\n' > one.toml
+    run_calder run one.toml
+    expect_error 2 "one.toml: 100000 bodies for 1000 frames" "share a point" "over the budget"
+    expect_within 5000
+    ;;
+  work_mouse_ranges) # scene file
+    { printf 'frames = 10000000\n[[bodies]]\nmass = 1\nposition = [1, 1]\n[input]\nmouse_pressed = [\n'
+      seq 1 2 240000 | sed 's/.*/[&, &],/'; echo ']'; } > ranges.toml
+    run_calder run ranges.toml
+    expect_error 2 "ranges.toml: 1 bodies for 10000000 frames" "over the budget"
+    expect_within 60000
+    ;;
+  work_many_fields) # scene file
+    { printf 'frames = 10000000\n[[bodies]]\nmass = 1\nposition = [1, 1]\n'
+      for _ in $(seq 120); do printf '[[fields]]\ntype="gravity"\n%.0s' $(seq 1000); done; } > fields.toml
+    run_calder run fields.toml
+    expect_error 2 "fields.toml: 1 bodies for 10000000 frames" "over the budget"
+    expect_within 60000
+    ;;
+  hud_many_bodies) # scene file
+    # The HUD's energy is bounded a frame (a sampled estimate shown with ~):
+    # 5 images of 8 * 10^8 pairs each took minutes.
+    printf 'frames = 4\n[[bodies]]\ncount = 40000\nmass = 1\nx = { min = 0, max = 640 }\ny = { min = 0, max = 360 }\n[[fields]]\ntype = "mutual_attraction"\nmethod = "barnes_hut"\n' > hud.toml
+    run_calder render hud.toml --hud --gif out.gif -q
+    [ "$rc" = 0 ] || fail "exit $rc"
+    expect_within 30000
+    ;;
+  long_frame_signal) # scene file
+    # One frame of exact mutual attraction among 60,000 bodies takes many
+    # seconds: SIGTERM still ends it within a second, the temporary removed.
+    printf 'frames = 1\n[[bodies]]\ncount = 60000\nmass = 1\nx = { min = 0, max = 640 }\ny = { min = 0, max = 360 }\n[[fields]]\ntype = "mutual_attraction"\n' > long.toml
+    for signal in TERM INT; do
+      env --default-signal="$signal" "$calder" render long.toml --no-work-limit --gif out.gif -q > /dev/null 2> err < /dev/null &
+      pid=$!
+      for _ in $(seq 100); do
+        [ -n "$(find . -name '.out.gif.tmp-*')" ] && break
+        sleep 0.1
+      done
+      sleep 0.5
+      start=$(now_ms)
+      kill -s "$signal" "$pid"
+      wait "$pid"
+      rc=$?
+      ms=$(($(now_ms) - start))
+      [ "$rc" = $((128 + $(kill -l "$signal"))) ] || fail "SIG$signal: exit $rc"
+      expect_within 1500
+      grep -qx 'calder: interrupted' err || fail "SIG$signal: no 'calder: interrupted' line"
+      [ ! -e out.gif ] || fail "out.gif exists"
+      expect_no_temporaries
+    done
+    ;;
+  threads_1024) # scene file
+    # The documented maximum, under a memory limit that can't hold 1024 thread
+    # stacks: capped to the processors (results do not depend on the count).
+    printf 'frames = 3\n[world]\nthreads = 1024\n[[bodies]]\ncount = 3000\nmass = 1\nx = { min = 0, max = 640 }\ny = { min = 0, max = 360 }\n[[fields]]\ntype = "mutual_attraction"\nmethod = "direct"\nthreads = 1024\n' > threads.toml
+    "$calder" run threads.toml --trajectory expected.csv > /dev/null 2>&1 || fail "unlimited run failed"
+    limit=4000000
+    # A sanitizer's shadow memory needs more address space than any limit here.
+    (ulimit -v "$limit" && exec "$calder" --version) > /dev/null 2>&1 || limit=unlimited
+    (ulimit -v "$limit" && exec "$calder" run threads.toml --trajectory out.csv) > out 2> err < /dev/null
+    rc=$?
+    [ "$rc" = 0 ] || fail "exit $rc under ulimit -v $limit: $(head -c 300 err)"
+    cmp -s expected.csv out.csv || fail "the capped run differs"
+    expect_no_temporaries
+    ;;
+  threads_refused) # scene file
+    # Thread stacks of 2 GB (ulimit -s) under 1.5 GB of address space: the
+    # second thread can't start. Refused up front with one line, nothing
+    # written, rather than OpenMP's abort with the temporary left behind.
+    printf 'frames = 3\n[world]\nthreads = 2\n[[bodies]]\ncount = 500\nmass = 1\nx = { min = 0, max = 640 }\ny = { min = 0, max = 360 }\n[[fields]]\ntype = "mutual_attraction"\nmethod = "direct"\nthreads = 2\n' > threads.toml
+    limits='ulimit -s 2000000 && ulimit -v 1500000'
+    if (eval "$limits" && exec "$calder" --version) > /dev/null 2>&1; then
+      (eval "$limits" && exec "$calder" run threads.toml --trajectory out.csv) > out 2> err < /dev/null
+      rc=$?
+      expect_error 2 "threads.toml: cannot start 2 threads"
+      [ ! -e out.csv ] || fail "out.csv was written"
+    else
+      # A sanitizer's shadow memory needs more address space: the cap alone.
+      run_calder run threads.toml --trajectory out.csv
+      [ "$rc" = 0 ] || fail "exit $rc"
+    fi
+    expect_no_temporaries
+    ;;
+  # --- outputs that the policy refuses, replaces, never appends to ---------------------------
+  shm_replaced)
+    "$calder" run example-2.1 --frames 20 --trajectory expected.json || fail "plain run failed"
+    for dir in /dev/shm "/proc/self/cwd/sub"; do
+      mkdir -p sub
+      target="$dir/calder-hostile-$$.json"
+      for _ in 1 2; do
+        run_calder run example-2.1 --frames 20 --trajectory "$target"
+        [ "$rc" = 0 ] || fail "$target: exit $rc"
+      done
+      real=$target
+      [ "$dir" = /dev/shm ] || real="sub/calder-hostile-$$.json"
+      cmp -s expected.json "$real" || { rm -f "$real"; fail "$target: appended to, not replaced"; }
+      rm -f "$real"
+    done
+    ;;
+  write_protected)
+    echo old > ro.csv && chmod 444 ro.csv
+    run_calder run example-2.1 --frames 5 --trajectory ro.csv
+    expect_error 2 "ro.csv" "write-protected"
+    [ "$(cat ro.csv)" = old ] || fail "the write-protected file was replaced"
+    run_calder render example-2.1 --frames 1 --gif ro.csv
+    expect_error 2 "ro.csv"
+    [ "$(cat ro.csv)" = old ] || fail "the write-protected file was replaced by render"
+    expect_no_temporaries
+    ;;
+  sticky_foreign)
+    # Another user's link or file in a sticky folder (/tmp): refused, as the
+    # kernel's fs.protected_symlinks and protected_regular would (needs root to
+    # give files away; as another user the same files are refused by the kernel).
+    mkdir shared && chmod 1777 shared
+    echo target > victim.csv
+    ln -s "$work/victim.csv" shared/link.csv
+    echo theirs > shared/theirs.csv
+    if [ "$(id -u)" = 0 ]; then
+      chown -h nobody shared/link.csv && chown nobody shared/theirs.csv
+      run_calder run example-2.1 --frames 5 --trajectory shared/link.csv
+      expect_error 2 "shared/link.csv" "another user's, in a shared (sticky) folder"
+      [ "$(cat victim.csv)" = target ] || fail "the link's target was replaced"
+      run_calder run example-2.1 --frames 5 --trajectory shared/theirs.csv
+      expect_error 2 "shared/theirs.csv" "another user's"
+      [ "$(cat shared/theirs.csv)" = theirs ] || fail "another user's file was replaced"
+      [ "$(stat -c %U shared/theirs.csv)" = nobody ] || fail "the file changed owner"
+    fi
+    # Our own link there is followed: its target replaced, the link kept.
+    ln -s "$work/victim.csv" shared/mine.csv
+    run_calder run example-2.1 --frames 5 --trajectory shared/mine.csv
+    [ "$rc" = 0 ] || fail "our own link: exit $rc"
+    [ -L shared/mine.csv ] || fail "the link was replaced"
+    [ "$(wc -l < victim.csv)" = 7 ] || fail "the link's target was not written"
+    # A link to nothing is refused (nothing created through it).
+    ln -s "$work/nothing.csv" dangling.csv
+    run_calder run example-2.1 --frames 5 --trajectory dangling.csv
+    expect_error 2 "dangling.csv" "a symbolic link to a missing file"
+    [ ! -e nothing.csv ] || fail "a file was created through the link"
+    expect_no_temporaries shared
+    ;;
+  output_is_input) # scene file
+    printf 'name = "mine"\nframes = 3\n[[bodies]]\nmass = 1\nposition = [1, 1]\n' > mine.toml
+    cp mine.toml kept.toml
+    printf '%s\n1,2,0,0,1\n' "$rows_csv" > st.csv
+    cp st.csv kept.csv
+    mkdir sub
+    run_calder run mine.toml --trajectory mine.toml
+    expect_error 2 "--trajectory 'mine.toml': is the scene file 'mine.toml'"
+    run_calder run mine.toml --trajectory ./sub/../mine.toml
+    expect_error 2 "the scene file 'mine.toml'"
+    run_calder render mine.toml --gif mine.toml
+    expect_error 2 "--gif 'mine.toml'" "the scene file"
+    run_calder run example-2.8 --state st.csv --trajectory st.csv
+    expect_error 2 "--trajectory 'st.csv': is --state 'st.csv'"
+    ln -s mine.toml alias.toml
+    run_calder run mine.toml --trajectory alias.toml
+    expect_error 2 "the scene file 'mine.toml'"
+    cmp -s mine.toml kept.toml || fail "the scene file was changed"
+    cmp -s st.csv kept.csv || fail "the state file was changed"
+    mkdir dir
+    run_calder render example-2.1 --frames 1 --png dir --gif dir/frame-000000.png
+    expect_error 2 "--gif 'dir/frame-000000.png': is inside --png 'dir'"
+    [ -z "$(ls -A dir)" ] || fail "dir was written"
+    expect_no_temporaries
+    ;;
+  png_all_or_none)
+    "$calder" render example-2.1 --frames 4 --png frames -q || fail "first render failed"
+    echo keep > frames/notes.txt
+    mkdir frames/sub && echo deep > frames/sub/file.txt
+    before=$(md5sum frames/frame-* | md5sum)
+    # A folder where a frame goes: refused before anything is drawn.
+    rm frames/frame-000002.png && mkdir frames/frame-000002.png
+    run_calder render example-2.1 --frames 3 --png frames -q
+    expect_error 2 "frame-000002.png' is not a PNG file"
+    rmdir frames/frame-000002.png
+    # A re-render: the frames swapped as a whole, the other entries kept.
+    run_calder render example-2.1 --frames 1 --png frames -q
+    [ "$rc" = 0 ] || fail "re-render: exit $rc"
+    [ "$(cd frames && ls | tr '\n' ' ')" = "frame-000000.png frame-000001.png notes.txt sub " ] ||
+      fail "frames holds: $(ls frames | tr '\n' ' ')"
+    [ "$(cat frames/notes.txt frames/sub/file.txt)" = "$(printf 'keep\ndeep')" ] || fail "other files changed"
+    expect_no_temporaries frames
+    [ -n "$before" ] || fail "no frames at first"
+    ;;
+  png_one_sync)
+    # The frames are flushed to disk once a render, not once a frame.
+    command -v strace > /dev/null || fail "strace is needed (Debian package strace, scripts/setup)"
+    syncs=$(strace -f -c -e trace=fsync,fdatasync,syncfs "$calder" render example-2.1 --frames 60 --png frames -q 2>&1 >/dev/null |
+      awk '$NF ~ /^(fsync|fdatasync|syncfs)$/ { n += $4 } END { print n + 0 }')
+    [ "$(ls frames | wc -l)" = 61 ] || fail "not 61 frames"
+    [ "$syncs" -ge 1 ] || fail "strace counted no flush at all"
+    [ "$syncs" -le 3 ] || fail "$syncs calls to fsync/fdatasync/syncfs for 61 frames"
+    ;;
+  escape_in_output_path)
+    dir=$'f\e]0;title\a\ncalder: forged'
+    run_calder render example-2.1 --frames 1 --png "$dir" --gif "$dir.gif"
+    [ "$rc" = 0 ] || fail "exit $rc"
+    if LC_ALL=C grep -q $'\x1b\|\x07' out; then fail "an escape sequence in the report"; fi
+    [ "$(wc -l < out)" = 2 ] || fail "expected 2 lines, got $(wc -l < out)"
+    grep -q '^calder:' out && fail "a forged calder: line"
+    grep -qF 'f\x1b]0;title\x07\ncalder: forged' out || fail "the path is not shown escaped: $(cat -v out)"
+    ;;
+  summary_overflow) # scene file
+    printf 'frames = 1\n[[bodies]]\nmass = 1e10\nposition = [0, 1e300]\nvelocity = [1e300, 0]\n[[fields]]\ntype = "gravity"\ng = [0, 0.1]\nscale_by_mass = true\n' > over.toml
+    run_calder run over.toml
+    expect_error 1 "over.toml: frame 1:" "overflows"
+    [ ! -s out ] || fail "a summary was printed: $(head -3 out)"
     ;;
   # --- work without a bound -----------------------------------------------------------
   exact_ten_million)
