@@ -9,6 +9,7 @@
 #include "calder/error.hpp"
 #include "calder/trajectory.hpp"
 #include "calder/world.hpp"
+#include "devices_command.hpp"
 #include "errors.hpp"
 #include "output_file.hpp"
 #include "progress.hpp"
@@ -48,6 +49,7 @@ CLI::App* add_run_command(CLI::App& app, RunOptions& options) {
                   "Trajectory format (default: json for a FILE ending in .json, else csv)")
       ->type_name("csv|json")
       ->needs(trajectory);
+  add_device_option(*run, options.device);  // calder::gpu (devices_command.hpp)
   run->footer(
       "Without --trajectory, prints the scene, frames, bodies, dt, seed, kinetic, potential and "
       "total energy, linear and angular momentum and the state hash.\n"
@@ -99,6 +101,7 @@ void run_command(const RunOptions& options, std::ostream& out, std::ostream& err
   if (options.trajectory) (void)trajectory_format(options.format, *options.trajectory);
   const PreparedInput input = prepare_input(options.input);
   Simulation simulation = start_simulation(input);
+  use_device(options.device, simulation);  // --device gpu: every step on the GPU, or an error
   const std::int64_t frames = input.scene.frames;
 
   // A terminating signal stops the run at the next frame (exit 128 + signal,

@@ -26,6 +26,7 @@ struct RunOptions {
   InputOptions input;
   std::optional<std::string> trajectory;  // a path, or "-" for stdout
   std::optional<std::string> format;      // "csv" or "json"
+  std::optional<std::string> device;      // --device (devices_command.hpp)
 };
 
 // Adds the `run` verb with its flags to the application.
