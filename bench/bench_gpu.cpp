@@ -21,7 +21,7 @@
 //
 // The review's figures (an H100 or H200; about a minute):
 //   build/bench/bench_gpu --benchmark_filter='Direct/N:(1048576|131072)|Rain/N:(10000000|1000000)'
-// The small sizes (N:4096, N:100000) run on lavapipe in seconds. GpuRows
+// The small sizes (N:1024, N:10000) run on lavapipe in seconds. GpuRows
 // prints calder-bench's GPU rows (bench/gpu_rows.hpp), quick sizes.
 #include <benchmark/benchmark.h>
 
@@ -121,7 +121,7 @@ void GpuDirect(benchmark::State& state) {
 }
 BENCHMARK(GpuDirect)
     ->ArgNames({"N", "precision", "law", "transfers"})
-    ->ArgsProduct({{4096, 1 << 20}, {32, 64}, {0, 1}, {0, 1}})
+    ->ArgsProduct({{1024, 1 << 20}, {32, 64}, {0, 1}, {0, 1}})
     ->UseRealTime()
     ->Unit(benchmark::kMillisecond);
 
@@ -140,7 +140,7 @@ void CpuDirect(benchmark::State& state) {
 }
 BENCHMARK(CpuDirect)
     ->ArgNames({"N", "precision"})
-    ->ArgsProduct({{4096, 1 << 17}, {32, 64}})
+    ->ArgsProduct({{1024, 1 << 17}, {32, 64}})
     ->UseRealTime()
     ->Unit(benchmark::kMillisecond);
 
@@ -201,7 +201,7 @@ void GpuRain(benchmark::State& state) {
 }
 BENCHMARK(GpuRain)
     ->ArgNames({"N", "arithmetic", "transfers"})
-    ->ArgsProduct({{100000, 10000000}, {32, 64}, {0, 1}})
+    ->ArgsProduct({{10000, 10000000}, {32, 64}, {0, 1}})
     ->UseRealTime()
     ->Unit(benchmark::kMillisecond);
 
@@ -215,7 +215,7 @@ void CpuRain(benchmark::State& state) {
 }
 BENCHMARK(CpuRain)
     ->ArgNames({"N", "arithmetic"})
-    ->ArgsProduct({{100000, 1000000}, {32, 64}})
+    ->ArgsProduct({{10000, 1000000}, {32, 64}})
     ->UseRealTime()
     ->Unit(benchmark::kMillisecond);
 

@@ -62,7 +62,7 @@ World rain_world(std::size_t n, StepBatchBackend backend) {
 }
 
 void direct_rows(gpu::Context& context, bool quick, std::vector<GpuRow>& rows) {
-  const std::size_t n = quick ? 4096 : std::size_t{1} << 20;
+  const std::size_t n = quick ? 1024 : std::size_t{1} << 20;
   Random rng(42);
   std::vector<double> x(n), y(n), m(n), ax(n), ay(n);
   for (std::size_t i = 0; i < n; ++i) {
@@ -95,7 +95,7 @@ void direct_rows(gpu::Context& context, bool quick, std::vector<GpuRow>& rows) {
 }
 
 void rain_rows(gpu::Context& context, bool quick, std::vector<GpuRow>& rows) {
-  const std::size_t n = quick ? 100000 : 10000000;
+  const std::size_t n = quick ? 10000 : 10000000;
   const double body_steps = static_cast<double>(n) * World::kBatchSteps;
   const std::string size = ", N = " + std::to_string(n) + ", batches of 128 steps";
   World world = rain_world(n, bulk::step_batch);

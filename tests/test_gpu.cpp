@@ -8,6 +8,8 @@
 
 #include <algorithm>
 #include <calder/bulk.hpp>
+#include <calder/diagnostics.hpp>
+#include <calder/fields.hpp>
 #include <calder/gpu.hpp>
 #include <calder/nbody.hpp>
 #include <calder/random.hpp>
@@ -333,9 +335,52 @@ TEST_F(GpuTest, AWorldStepsOnTheGpuThroughItsBackend) {
     ASSERT_EQ(backed.velocity(id), world.velocity(id)) << i;
   }
   EXPECT_EQ(backed.acceleration(backed.body(0)), calder::Vec2{});
-  // What the GPU can't run is an error, never a silent run on the CPU.
+  // A float32 world the GPU can't run is an error, never a run on the CPU.
+  World custom = rain_world(500, Arithmetic::float32, gpu::step_batch);
+  custom.add(calder::CustomForce{
+      .force = [](const calder::FieldContext&, std::size_t) { return calder::Vec2{}; }});
+  calder::test::expect_error([&] { custom.step(100); }, {"GPU", "custom_force"});
+  // The book arithmetic is the CPU's: the backend declines, the loops run it.
   World book = rain_world(500, Arithmetic::book, gpu::step_batch);
-  calder::test::expect_error([&] { book.step(100); }, {"GPU", "book"});
+  World kernels = rain_world(500, Arithmetic::book, calder::bulk::step_batch);
+  book.step(100);
+  kernels.step(100);  // calder::bulk's book kernels: the loops' bits
+  EXPECT_EQ(calder::state_hash(book), calder::state_hash(kernels));
+}
+
+// MutualAttraction with method direct through the world's backend: the
+// GPU's float64 sums give the steps calder::nbody's give, to rounding.
+TEST_F(GpuTest, MutualAttractionStepsOnTheGpuThroughItsBackend) {
+  if (!context().info().float64) FAIL() << "no shaderFloat64";
+  gpu::install(context().info().index);
+  const auto cluster = [](calder::MutualAttractionBackend backend) {
+    calder::WorldDef def;
+    def.backends.mutual_attraction = backend;
+    World world(def);
+    calder::Random rng(5);
+    for (int i = 0; i < 300; ++i) {
+      world.add_body({.position = {rng.random(200.0, 440.0), rng.random(40.0, 200.0)},
+                      .mass = rng.random(1.0, 4.0)});
+    }
+    world.add(calder::MutualAttraction{.law = calder::AttractionLaw::newtonian(1.0, 2.0),
+                                       .method = calder::NBodyMethod::direct});
+    return world;
+  };
+  World cpu = cluster(nbody::mutual_attraction);
+  World on_gpu = cluster(gpu::mutual_attraction);
+  cpu.step(20);
+  on_gpu.step(20);
+  double worst = 0.0;
+  for (std::size_t i = 0; i < cpu.body_count(); ++i) {
+    const calder::BodyId id = cpu.body(i);
+    worst = std::max(worst, (on_gpu.position(id) - cpu.position(id)).mag());
+  }
+  EXPECT_LT(worst, 1e-9);
+  EXPECT_GT(worst, 0.0);  // the sums differ in the last bits: the GPU's indeed
+  // Barnes-Hut has no GPU kernel: an error, not the CPU's.
+  World tree = cluster(gpu::mutual_attraction);
+  std::get<calder::MutualAttraction>(tree.field(0)).method = calder::NBodyMethod::barnes_hut;
+  calder::test::expect_error([&] { tree.step(); }, {"Barnes-Hut"});
 }
 
 }  // namespace

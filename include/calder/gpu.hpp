@@ -187,8 +187,10 @@ class DeviceWorld {
 // A StepBatchBackend (calder/backends.hpp) that runs World::step's batches on
 // the process's device (install()): each call uploads the batch's bodies,
 // runs its steps and downloads them (DeviceWorld keeps them there instead).
-// Throws calder::InvalidArgument, before changing anything, for what the GPU
-// can't run (book arithmetic included): never a silent fallback to the CPU.
+// It declines what the GPU can't run, as calder::bulk does: World::step then
+// throws for the float32 and float64 arithmetics, and runs the book
+// arithmetic (p5.js's bits, the CPU's by definition) in its plain loops.
+// unsupported() says beforehand; the calder command refuses such a scene.
 bool step_batch(const StepBatch& batch, std::string* why_not);
 // A MutualAttractionBackend: NBodyMethod::direct on the device;
 // barnes_hut is refused (calder::InvalidArgument: no Barnes-Hut on the GPU).

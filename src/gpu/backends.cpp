@@ -52,18 +52,16 @@ std::size_t first_non_finite(const StepBatch& batch) {
 }  // namespace
 
 bool step_batch(const StepBatch& batch, std::string* why_not) {
-  (void)why_not;  // never declines: what it can't run is an error, not a fallback
   Context& context = require_context("gpu::step_batch");
   Installed& s = installed_state();
   const std::lock_guard<std::mutex> lock(s.mutex);
-  if (const std::string why =
-          unsupported_settings(batch.arithmetic, batch.boundary, *batch.fields, context.impl());
-      !why.empty()) {
-    throw InvalidArgument("World::step on the GPU: " + why);
-  }
-  std::string why;
-  if (!bulk::detail::compile(batch, s.plan, &why)) {
-    throw InvalidArgument("World::step on the GPU: " + why);
+  // Declined (World then throws, or, for the book arithmetic, runs its loops).
+  std::string why =
+      unsupported_settings(batch.arithmetic, batch.boundary, *batch.fields, context.impl());
+  if (why.empty()) bulk::detail::compile(batch, s.plan, &why);
+  if (!why.empty()) {
+    if (why_not != nullptr) *why_not = "on the GPU, " + why;
+    return false;
   }
   if (!s.stepper) s.stepper = std::make_unique<Stepper>(context.impl());
   const std::size_t n = batch.bodies.x.size();
