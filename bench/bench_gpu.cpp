@@ -19,8 +19,9 @@
 // context's TransferStats). The device is the first Vulkan device with compute
 // (CALDER_GPU_DEVICE=N picks another; `calder devices` lists them).
 //
-// The review's figures (an H100 or H200; about a minute):
-//   build/bench/bench_gpu --benchmark_filter='Direct/N:(1048576|131072)|Rain/N:(10000000|1000000)'
+// The review's figures (an H100 or H200; a few minutes): bench/gpu_review.sh,
+// which runs
+//   bench_gpu --benchmark_filter='Direct/N:(1048576|131072)/|Rain/N:(10000000|1000000)/'
 // The small sizes (N:1024, N:10000) run on lavapipe in seconds. GpuRows
 // prints calder-bench's GPU rows (bench/gpu_rows.hpp), quick sizes.
 #include <benchmark/benchmark.h>
