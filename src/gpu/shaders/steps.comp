@@ -95,7 +95,7 @@ REAL2 op_accel(int op, uint step, REAL4 b, REAL4 q) {
               : k.z == 1 ? b.x > p.width - r - tol
               : k.z == 2 ? b.y < r + tol
                          : b.y > p.height - r - tol;
-      const REAL mu = isnan(q.z) ? prm(op, P_C) : q.z;
+      const REAL mu = q.z < REAL(0) ? prm(op, P_C) : q.z;  // -1: none of its own
       c = speed != REAL(0) ? mu * prm(op, P_NORMAL) * inv_m / speed : REAL(0);
     }
     if ((k.y & kNeverReverse) != 0) c = min(c, REAL(1) / p.dt);
