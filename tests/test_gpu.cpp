@@ -349,10 +349,11 @@ TEST_F(GpuTest, AWorldStepsOnTheGpuThroughItsBackend) {
   EXPECT_EQ(calder::state_hash(book), calder::state_hash(kernels));
 }
 
-// Every field kind with a GPU kernel, each alone with gravity on bodies of
-// random masses, radii, velocities and own frictions, against calder::bulk's
-// float64 steps (the same formulas): the boundaries too (bounce before and
-// after the update, on the radius, wrap).
+// Every field kind with a GPU kernel, each alone with gravity (the first,
+// wind, with all but the attractors) on bodies of random masses, radii,
+// velocities and own frictions, against calder::bulk's float64 steps (the
+// same formulas): the boundaries too (bounce before and after the update, on
+// the radius, wrap).
 TEST_F(GpuTest, EveryFieldKindMatchesTheCpuInFloat64) {
   if (!context().info().float64) FAIL() << "no shaderFloat64";
   using calder::Boundary;
@@ -371,6 +372,10 @@ TEST_F(GpuTest, EveryFieldKindMatchesTheCpuInFloat64) {
       {calder::Attractor{.mass = 30.0, .law = calder::AttractionLaw::newtonian(1.0, 3.0)},
        Boundary::none()},
   };
+  // All of them at once but the attractors: more ops than the pipelines
+  // specialised on their kinds hold (4), the loop over ops read from memory.
+  std::vector<std::pair<calder::Field, Boundary>> all = cases;
+  all.resize(cases.size() - 2);
   for (std::size_t k = 0; k < cases.size(); ++k) {
     SCOPED_TRACE(calder::field_name(cases[k].first));
     SCOPED_TRACE(k);
@@ -394,6 +399,9 @@ TEST_F(GpuTest, EveryFieldKindMatchesTheCpuInFloat64) {
       }
       world.add(calder::Gravity{.g = {0.0, 0.05}, .scale_by_mass = true});
       world.add_field(cases[k].first);
+      if (k == 0) {  // the first case runs with every field
+        for (std::size_t j = 1; j < all.size(); ++j) world.add_field(all[j].first);
+      }
       return world;
     };
     World cpu = make();
@@ -409,7 +417,7 @@ TEST_F(GpuTest, EveryFieldKindMatchesTheCpuInFloat64) {
       worst = std::max(worst, (on_gpu.velocity(id) - cpu.velocity(id)).mag());
     }
     std::printf("[ gpu      ] %s: worst |dx|, |dv| after 150 steps %.2g\n",
-                calder::field_name(cases[k].first), worst);
+                k == 0 ? "all but the attractors" : calder::field_name(cases[k].first), worst);
     // Rounding (fused multiply-adds where the two compilers chose), grown
     // over 150 steps: measured below 1e-12 but for the attractors, whose
     // close passes magnify it (1.3e-6); a wrong formula is off by far more.

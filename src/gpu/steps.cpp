@@ -129,7 +129,7 @@ void Stepper::upload_as(const BodyColumnsOf<std::span<const double>>& b) {
                                           {&accel_, accel.data(), accel.size() * sizeof(R)},
                                           {&props_, props.data(), props.size() * sizeof(R)}};
   context_->upload(copies);
-  bound_ = false;
+  ++generation_;
 }
 
 template <class R>
@@ -158,10 +158,20 @@ void Stepper::upload_ops(const bulk::detail::Plan& plan, int steps, Real2<R>& co
     reals.insert(reals.end(), values.begin(), values.end());
   }
   ops_ = static_cast<std::uint32_t>(ints.size() / 4);
+  // The specialization: workgroup, fixed op count (or -1), kinds, flags,
+  // laws or edges.
+  constants_.assign(14, 0);
+  constants_[0] = static_cast<std::int32_t>(kGroup);
+  constants_[1] = ops_ <= 4 ? static_cast<std::int32_t>(ops_) : -1;
+  for (std::size_t k = 0; k < ops_ && ops_ <= 4; ++k) {
+    constants_[2 + k] = ints[4 * k];
+    constants_[6 + k] = ints[4 * k + 1];
+    constants_[10 + k] = ints[4 * k + 2];
+  }
   const auto grow = [&](Buffer& b, std::size_t bytes) {
     if (b.bytes() < std::max<std::size_t>(bytes, 4)) {
       b = Buffer(*context_, std::max<std::size_t>(bytes, 64));
-      bound_ = false;
+      ++generation_;
     }
   };
   grow(op_ints_, ints.size() * sizeof(std::int32_t));
@@ -180,19 +190,19 @@ template <class R>
 std::size_t Stepper::run_as(const bulk::detail::Plan& plan, int steps) {
   Real2<R> constant{};
   upload_ops<R>(plan, steps, constant);
-  Kernel& kernel = float64_ ? kernel64_ : kernel32_;
-  if (!kernel.valid()) {
-    const std::int32_t constants[] = {static_cast<std::int32_t>(kGroup)};
-    kernel = Kernel(*context_, float64_ ? spirv::steps64() : spirv::steps32(), 7,
-                    sizeof(StepsPush<R>), constants);
-    bound_ = false;
+  std::vector<std::int32_t> key = constants_;
+  key.push_back(float64_ ? 64 : 32);
+  Cached& cached = kernels_[key];
+  if (!cached.kernel.valid()) {
+    cached.kernel = Kernel(*context_, float64_ ? spirv::steps64() : spirv::steps32(), 7,
+                           sizeof(StepsPush<R>), constants_);
   }
-  if (!bound_ || bound_float64_ != float64_) {
+  Kernel& kernel = cached.kernel;
+  if (cached.generation != generation_) {
     const Buffer* const buffers[] = {&state_,    &accel_,    &props_, &op_ints_,
                                      &op_reals_, &per_step_, &bad_};
     kernel.bind(buffers);
-    bound_ = true;
-    bound_float64_ = float64_;
+    cached.generation = generation_;
   }
   const auto groups = static_cast<std::uint32_t>((n_ + kGroup - 1) / kGroup);
   StepsPush<R> push{static_cast<std::uint32_t>(n_),

@@ -6,8 +6,10 @@
 #include <cstddef>
 #include <cstdint>
 #include <deque>
+#include <map>
 #include <span>
 #include <string>
+#include <vector>
 
 #include "../bulk/plan.hpp"
 #include "calder/body_columns.hpp"
@@ -48,12 +50,19 @@ class Stepper {
 
   Context::Impl* context_;
   Buffer state_, accel_, props_, op_ints_, op_reals_, per_step_, bad_;
-  Kernel kernel32_, kernel64_;
+  // Pipelines by precision and specialization (steps.comp's constants:
+  // the workgroup, and the kinds of up to 4 ops); each bound to the buffers
+  // of one generation (a buffer made again starts the next).
+  struct Cached {
+    Kernel kernel;
+    std::uint64_t generation = 0;
+  };
+  std::map<std::vector<std::int32_t>, Cached> kernels_;
+  std::vector<std::int32_t> constants_;  // the last upload_ops' plan's
+  std::uint64_t generation_ = 1;
   std::size_t n_ = 0;
   std::uint32_t ops_ = 0;
   bool float64_ = false;
-  bool bound_ = false;
-  bool bound_float64_ = false;
 };
 
 // Why the kernels can't run these settings ("" when they can).

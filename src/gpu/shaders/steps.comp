@@ -8,6 +8,23 @@
 #version 450
 
 layout(local_size_x_id = 0) in;
+// kFixedOps >= 0: the plan has that many ops (at most 4), of the kinds,
+// flags and laws or edges below, fixed when the pipeline is made: the
+// compiler then drops the dispatch on kinds and keeps the ops' parameters in
+// registers through the batch. -1: any number, read from op_ints.
+layout(constant_id = 1) const int kFixedOps = -1;
+layout(constant_id = 2) const int kKind0 = 0;
+layout(constant_id = 3) const int kKind1 = 0;
+layout(constant_id = 4) const int kKind2 = 0;
+layout(constant_id = 5) const int kKind3 = 0;
+layout(constant_id = 6) const int kFlags0 = 0;
+layout(constant_id = 7) const int kFlags1 = 0;
+layout(constant_id = 8) const int kFlags2 = 0;
+layout(constant_id = 9) const int kFlags3 = 0;
+layout(constant_id = 10) const int kWhich0 = 0;
+layout(constant_id = 11) const int kWhich1 = 0;
+layout(constant_id = 12) const int kWhich2 = 0;
+layout(constant_id = 13) const int kWhich3 = 0;
 
 #ifdef FLOAT64
 #define REAL double
@@ -68,9 +85,9 @@ const int P_FX = 0, P_FY = 1, P_C = 2, P_NORMAL = 3, P_XMIN = 4, P_XMAX = 5, P_Y
           P_YMAX = 7, P_TOL = 8, P_PX = 9, P_PY = 10, P_GM = 11, P_LO = 12, P_HI = 13, P_EPS = 14,
           P_REACH = 15;  // edge_force: its margin
 
-// The acceleration of one op on a body (x, y, vx, vy), its properties q.
-REAL2 op_accel(int op, uint step, REAL4 b, REAL4 q) {
-  const ivec4 k = op_ints[op];
+// The acceleration of op `op` on a body (x, y, vx, vy), its properties q;
+// k: its kind, flags, law or edge, and per-step forces' offset.
+REAL2 op_accel(int op, ivec4 k, uint step, REAL4 b, REAL4 q) {
   const REAL inv_m = q.x;
   if (k.x == kUniform) {
     if ((k.y & kPerStep) != 0) {
@@ -187,7 +204,15 @@ void main() {
   const bool before = (p.boundary & kBefore) != 0u;
   for (uint s = 0u; s < p.steps; ++s) {
     a += REAL2(p.cx, p.cy);
-    for (int op = 0; op < int(p.ops); ++op) a += op_accel(op, p.first + s, b, q);
+    const uint step = p.first + s;
+    if (kFixedOps >= 0) {
+      if (kFixedOps > 0) a += op_accel(0, ivec4(kKind0, kFlags0, kWhich0, op_ints[0].w), step, b, q);
+      if (kFixedOps > 1) a += op_accel(1, ivec4(kKind1, kFlags1, kWhich1, op_ints[1].w), step, b, q);
+      if (kFixedOps > 2) a += op_accel(2, ivec4(kKind2, kFlags2, kWhich2, op_ints[2].w), step, b, q);
+      if (kFixedOps > 3) a += op_accel(3, ivec4(kKind3, kFlags3, kWhich3, op_ints[3].w), step, b, q);
+    } else {
+      for (int op = 0; op < int(p.ops); ++op) a += op_accel(op, op_ints[op], step, b, q);
+    }
     if (before) b = edges(b, q.y);
     b.zw += a * p.dt;
     b.xy += b.zw * p.dt;
