@@ -30,13 +30,14 @@ using calder::World;
 namespace gpu = calder::gpu;
 namespace nbody = calder::nbody;
 
-// One device for the whole suite: opening one is the slow part on lavapipe.
+// One device for the whole suite, opened by the first test that asks (a
+// missing device is then that test's failure, with calder's message).
 class GpuTest : public ::testing::Test {
  protected:
-  static void SetUpTestSuite() {
+  static gpu::Context& context() {
     if (!context_) context_ = std::make_unique<gpu::Context>();
+    return *context_;
   }
-  static gpu::Context& context() { return *context_; }
 
  private:
   static inline std::unique_ptr<gpu::Context> context_;
