@@ -182,7 +182,7 @@ void GpuRain(benchmark::State& state) {
     return;
   }
   const bool transfers = state.range(2) != 0;
-  gpu::install(device().info().index);
+  gpu::open(device().info().index);
   calder::World world = rain(n, a, transfers ? gpu::step_batch : calder::bulk::step_batch);
   std::unique_ptr<gpu::DeviceWorld> on_device;
   if (!transfers) on_device = std::make_unique<gpu::DeviceWorld>(device(), world);

@@ -104,7 +104,7 @@ void rain_rows(gpu::Context& context, bool quick, std::vector<GpuRow>& rows) {
       seconds_per_call([&] { on_device.step(World::kBatchSteps); }, quick ? 1 : 3);
   rows.push_back({"gpu rain float32" + size + ", bodies on the device", body_steps / resident,
                   "body-steps/s", "a few hundred bytes copied"});
-  gpu::install(context.info().index);
+  gpu::open(context.info().index);
   World backed = rain_world(n, gpu::step_batch);
   gpu::installed()->reset_stats();
   int calls = 0;

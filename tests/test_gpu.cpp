@@ -321,7 +321,7 @@ TEST_F(GpuTest, WorldsTheKernelsCantRunAreRefused) {
 }
 
 TEST_F(GpuTest, AWorldStepsOnTheGpuThroughItsBackend) {
-  gpu::install(context().info().index);
+  gpu::open(context().info().index);
   ASSERT_NE(gpu::installed(), nullptr);
   // World::step's batches (128 steps, then 72) copied to the device and back:
   // the same kernel, the same bits as a DeviceWorld's 200 steps.
@@ -427,11 +427,29 @@ TEST_F(GpuTest, EveryFieldKindMatchesTheCpuInFloat64) {
   }
 }
 
+// install(): the GPU's backends become the defaults of the worlds that name
+// none (and open() alone leaves the defaults as they were).
+TEST_F(GpuTest, InstallMakesTheGpuTheProcessDefault) {
+  const calder::Backends before = calder::Backends{}.or_defaults();
+  gpu::open(context().info().index);
+  EXPECT_EQ(calder::Backends{}.or_defaults().step_batch, before.step_batch);
+  gpu::install(context().info().index);
+  EXPECT_EQ(calder::Backends{}.or_defaults().step_batch, &gpu::step_batch);
+  EXPECT_EQ(calder::Backends{}.or_defaults().mutual_attraction, &gpu::mutual_attraction);
+  World world = rain_world(300, Arithmetic::float32, nullptr);
+  World explicit_gpu = rain_world(300, Arithmetic::float32, gpu::step_batch);
+  world.step(50);
+  explicit_gpu.step(50);
+  EXPECT_EQ(calder::state_hash(world), calder::state_hash(explicit_gpu));
+  calder::set_step_batch_backend(before.step_batch);
+  calder::set_mutual_attraction_backend(before.mutual_attraction);
+}
+
 // MutualAttraction with method direct through the world's backend: the
 // GPU's float64 sums give the steps calder::nbody's give, to rounding.
 TEST_F(GpuTest, MutualAttractionStepsOnTheGpuThroughItsBackend) {
   if (!context().info().float64) FAIL() << "no shaderFloat64";
-  gpu::install(context().info().index);
+  gpu::open(context().info().index);
   const auto cluster = [](calder::MutualAttractionBackend backend) {
     calder::WorldDef def;
     def.backends.mutual_attraction = backend;

@@ -149,7 +149,8 @@ std::string unsupported(const World& world, const Context& context);
 // A world's bodies on the device. Made from a World (its bodies, fields,
 // boundary, dt, time and arithmetic at each step() call: the fields may be
 // changed between calls); steps on the device and copies the bodies back
-// only when asked. The World itself is not changed until read(world).
+// only when asked. The World itself is not changed until read(world); it
+// must outlive the DeviceWorld.
 class DeviceWorld {
  public:
   // Uploads the world's bodies. Throws calder::InvalidArgument with
@@ -196,10 +197,15 @@ bool step_batch(const StepBatch& batch, std::string* why_not);
 // barnes_hut is refused (calder::InvalidArgument: no Barnes-Hut on the GPU).
 void mutual_attraction(const MutualAttraction& field, const FieldContext& context,
                        std::span<double> ax, std::span<double> ay);
-// Opens the process's device (Context(device)) and makes the two functions
-// above the process defaults. Throws like Context(device).
+// Opens the process's device (Context(device)), the one the two functions
+// above use, if it isn't open yet (or another index is asked for); doesn't
+// change the process defaults. Throws like Context(device).
+Context& open(int device = -1);
+// open(device), and makes the two functions above the process defaults, for
+// every world that names no backend of its own (the `calder` command's
+// --device gpu).
 void install(int device = -1);
-// The process's device, after install(); nullptr before.
+// The process's device, after open() or install(); nullptr before.
 Context* installed();
 
 }  // namespace calder::gpu

@@ -27,7 +27,7 @@ void use_device(WorldDef& def, const std::string& device) {
                           "' runs arithmetic float32 and float64 (book, p5.js's bits, needs the "
                           "CPU): pass arithmetic=Arithmetic.float32 or float64");
   }
-  gpu::install(any ? -1 : std::stoi(device.substr(4)));
+  gpu::open(any ? -1 : std::stoi(device.substr(4)));  // this world's, not the process default
   def.backends.step_batch = gpu::step_batch;
   def.backends.mutual_attraction = gpu::mutual_attraction;
 #else
@@ -38,11 +38,16 @@ void use_device(WorldDef& def, const std::string& device) {
 }
 
 void bind_devices(py::module_& m) {
+  m.def(
+      "gpu_built",
+      [] {
 #if defined(CALDER_PYTHON_HAS_GPU)
-  m.attr("gpu_built") = true;
+        return true;
 #else
-  m.attr("gpu_built") = false;
+        return false;
 #endif
+      },
+      "Whether this calder has calder::gpu (World(device='gpu'); CALDER_WITH_GPU).");
   m.def(
       "devices",
       [] {

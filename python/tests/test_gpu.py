@@ -20,7 +20,7 @@ def rain(device, arithmetic=calder.Arithmetic.float32, n=2000):
 
 
 def test_the_rain_on_the_gpu_stays_close_to_the_cpu():
-    if not calder.gpu_built:  # CALDER_WITH_GPU=OFF: asking for the GPU is an error
+    if not calder.gpu_built():  # CALDER_WITH_GPU=OFF: asking for the GPU is an error
         with pytest.raises(calder.Error, match="without calder::gpu"):
             rain("gpu")
         return
@@ -40,6 +40,6 @@ def test_a_bad_device_or_the_book_arithmetic_is_an_error():
         calder.World(device="tpu")
     with pytest.raises(calder.Error, match="device 'gpu:999'|no Vulkan device"):
         calder.World(device="gpu:999", arithmetic=calder.Arithmetic.float32)
-    if calder.gpu_built:
+    if calder.gpu_built():
         with pytest.raises(calder.Error, match="book"):
             calder.World(device="gpu")

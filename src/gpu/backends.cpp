@@ -103,7 +103,7 @@ void mutual_attraction(const MutualAttraction& field, const FieldContext& contex
   s.sums->add_to(ax, ay);
 }
 
-void install(int device) {
+Context& open(int device) {
   Installed& s = installed_state();
   const std::lock_guard<std::mutex> lock(s.mutex);
   if (!s.context || (device >= 0 && s.context->info().index != device)) {
@@ -111,6 +111,11 @@ void install(int device) {
     s.stepper.reset();
     s.context = std::make_unique<Context>(device);
   }
+  return *s.context;
+}
+
+void install(int device) {
+  open(device);
   set_step_batch_backend(step_batch);
   set_mutual_attraction_backend(mutual_attraction);
 }
