@@ -162,9 +162,11 @@ class DeviceWorld {
   DeviceWorld(const DeviceWorld&) = delete;
   DeviceWorld& operator=(const DeviceWorld&) = delete;
 
-  // count steps of the world's fields, batches of World::kBatchSteps.
-  // Throws calder::RunError if a position or velocity became non-finite
-  // (checked when read).
+  // count steps of the world's fields, batches of World::kBatchSteps, in
+  // one submission. Copies the ops' parameters (and a noise wind's forces)
+  // there and one word back: the first body whose position or velocity
+  // became non-finite, for which it throws calder::RunError (the bodies are
+  // then as the failing steps left them).
   void step(int count);
   // Copies positions and velocities back into `world` (the one it was made
   // from, or one with as many bodies). Its time and the accelerations

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 // calder::gpu: the World's backends on the process's device (install()).
 #include <algorithm>
+#include <cmath>
 #include <memory>
 #include <mutex>
 #include <string>
