@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "calder/error.hpp"
+#include "devices_command.hpp"
 #include "errors.hpp"
 #include "render_command.hpp"
 #include "run_command.hpp"
@@ -66,6 +67,7 @@ struct Parser {
   CLI::App* run = nullptr;
   CLI::App* render = nullptr;
   CLI::App* window = nullptr;
+  CLI::App* devices = nullptr;  // devices_command.hpp
 
   Parser() {
     app.set_version_flag("--version", std::string("calder ") + CALDER_VERSION);
@@ -77,6 +79,7 @@ struct Parser {
     run = add_run_command(app, run_options);
     render = add_render_command(app, render_options);
     window = add_window_command(app, window_options);
+    devices = add_devices_command(app);
   }
 };
 
@@ -112,6 +115,8 @@ int main(int argc, const char* const* argv, std::ostream& out, std::ostream& err
       render_command(render_options, out, err);
     } else if (window->parsed()) {
       window_command(window_options, out, err);
+    } else if (parser.devices->parsed()) {
+      devices_command(out);
     } else {
       print_scene_list(out);
     }

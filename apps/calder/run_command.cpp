@@ -11,6 +11,7 @@
 #include "calder/error.hpp"
 #include "calder/trajectory.hpp"
 #include "calder/world.hpp"
+#include "devices_command.hpp"
 #include "errors.hpp"
 #include "output_file.hpp"
 #include "output_policy.hpp"
@@ -62,6 +63,7 @@ CLI::App* add_run_command(CLI::App& app, RunOptions& options) {
       ->type_name("csv|json")
       ->needs(trajectory);
   add_snapshot_options(*run, options.snapshot);
+  add_device_option(*run, options.device);  // calder::gpu (devices_command.hpp)
   run->footer(
       "Without --trajectory, prints the scene, frames, bodies, dt, seed, kinetic, potential and "
       "total energy, linear and angular momentum and the state hash.\n"
@@ -116,6 +118,7 @@ void run_command(const RunOptions& options, std::ostream& out, std::ostream& err
   if (options.trajectory) check_run_outputs(*options.trajectory, input);
   Simulation simulation = start_simulation(input);
   SnapshotOutputs snapshots(options.snapshot, simulation);
+  use_device(options.device, simulation);  // --device gpu: every step on the GPU, or an error
   const std::int64_t frames = input.scene.frames;
   check_world_work(input, simulation,
                    {.once = options.trajectory

@@ -28,6 +28,7 @@ struct RunOptions {
   std::optional<std::string> trajectory;  // a path, or "-" for stdout
   std::optional<std::string> format;      // "csv" or "json"
   SnapshotOptions snapshot;               // --save, --archive, --every
+  std::optional<std::string> device;      // --device (devices_command.hpp)
 };
 
 // Adds the `run` verb with its flags to the application.

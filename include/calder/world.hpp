@@ -263,6 +263,7 @@ class World {
   [[nodiscard]] Arithmetic arithmetic() const { return def_.arithmetic; }
   void set_arithmetic(Arithmetic arithmetic) { def_.arithmetic = arithmetic; }
   [[nodiscard]] int threads() const { return def_.threads; }
+  [[nodiscard]] double max_speed() const { return def_.max_speed; }
   void set_threads(int threads);
   [[nodiscard]] double width() const { return def_.width; }
   [[nodiscard]] double height() const { return def_.height; }

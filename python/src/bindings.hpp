@@ -95,6 +95,9 @@ void bind_fields(py::module_& m);
 void bind_world(py::module_& m);
 void bind_scene_render(py::module_& m);
 void bind_snapshot(py::module_& m);
+// device.cpp: World(device=...) and calder.devices() (calder::gpu).
+void use_device(WorldDef& def, const std::string& device);
+void bind_devices(py::module_& m);
 
 }  // namespace calder::python
 

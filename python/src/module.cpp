@@ -108,6 +108,7 @@ PYBIND11_MODULE(_calder, m) {
   bind_world(m);
   bind_scene_render(m);
   bind_snapshot(m);
+  bind_devices(m);
 
   // Frees the renderer's caches at exit, as the calder command does, so a
   // leak checker sees a clean interpreter exit.

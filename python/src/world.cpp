@@ -241,14 +241,17 @@ void bind_world(py::module_& m) {
   world
       .def(py::init([](double width, double height, double dt, Integrator integrator,
                        UpdateOrder update_order, const Boundary& boundary, std::uint32_t seed,
-                       Arithmetic arithmetic, int threads) {
-             return std::make_unique<World>(WorldDef{width, height, dt, integrator, update_order,
-                                                     boundary, seed, arithmetic, threads});
+                       Arithmetic arithmetic, int threads, const std::string& device) {
+             WorldDef def{width,    height, dt,         integrator, update_order,
+                          boundary, seed,   arithmetic, threads};
+             use_device(def, device);  // device.cpp: "gpu" steps on calder::gpu
+             return std::make_unique<World>(def);
            }),
            py::kw_only(), py::arg("width") = 640.0, py::arg("height") = 240.0, py::arg("dt") = 1.0,
            py::arg("integrator") = Integrator::semi_implicit_euler,
            py::arg("update_order") = UpdateOrder::simultaneous, py::arg("boundary") = Boundary{},
-           py::arg("seed") = 0, py::arg("arithmetic") = Arithmetic::book, py::arg("threads") = 0)
+           py::arg("seed") = 0, py::arg("arithmetic") = Arithmetic::book, py::arg("threads") = 0,
+           py::arg("device") = "cpu")
       // --- bodies ---
       .def(
           "add_body",
