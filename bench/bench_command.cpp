@@ -510,13 +510,12 @@ Section nbody_section(const Plan& plan, Runner& runner, Results& results) {
 class PlainLoops {
  public:
   PlainLoops() { set_step_batch_backend(nullptr); }
-  ~PlainLoops() { bulk::install(); }
+  ~PlainLoops() { set_step_batch_backend(bulk::step_batch); }
   PlainLoops(const PlainLoops&) = delete;
   PlainLoops& operator=(const PlainLoops&) = delete;
 };
 
 Section movers_section(const Plan& plan, Runner& runner, Results& results) {
-  bulk::install();
   Section section;
   section.title = "movers, the rain scene: body-steps per second";
   Table table;
