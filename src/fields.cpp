@@ -25,13 +25,6 @@ bool touches_edge(Edge edge, Vec2 position, double radius, double width, double 
 
 namespace {
 
-template <class... Ts>
-struct Overloaded : Ts... {
-  using Ts::operator()...;
-};
-template <class... Ts>
-Overloaded(Ts...) -> Overloaded<Ts...>;
-
 void require_finite_vec(Vec2 v, const char* where, const char* what) {
   detail::require_finite(v.x, where, what);
   detail::require_finite(v.y, where, what);
@@ -146,6 +139,45 @@ void accumulate_mutual(const MutualAttraction& f, const FieldContext& c, std::si
   }
 }
 
+// An enabled field on the bodies of the range: its law, one body at a time;
+// or, for a kind with a force of its own (the attractor: any attraction
+// law), that force; the noise wind and the kinds without a law have their own.
+template <class F>
+void accumulate_kind(const F& f, const FieldContext& c, std::size_t first, std::size_t last,
+                     std::span<double> ax, std::span<double> ay) {
+  if constexpr (requires { FieldKind<F>::force(f, c, first); }) {
+    accumulate_each(c, first, last, ax, ay,
+                    [&](std::size_t i) { return FieldKind<F>::force(f, c, i); });
+  } else {
+    accumulate_law<F>(FieldKind<F>::template law<double>(f), c, first, last, ax, ay);
+  }
+}
+
+void accumulate_kind(const NoiseWind& f, const FieldContext& c, std::size_t first, std::size_t last,
+                     std::span<double> ax, std::span<double> ay) {
+  if (c.noise == nullptr) throw Error("field noise_wind: the world has no noise");
+  // Accumulating: the noise is read at offset itself (0 * rate adds nothing).
+  const double time = f.accumulate ? 0.0 : c.time;
+  const Vec2 force = noise_wind(*c.noise, time, f.strength, f.rate, f.offset);
+  accumulate_law<NoiseWind>({.fx = force.x, .fy = force.y}, c, first, last, ax, ay);
+}
+
+void accumulate_kind(const MutualAttraction& f, const FieldContext& c, std::size_t first,
+                     std::size_t last, std::span<double> ax, std::span<double> ay) {
+  accumulate_mutual(f, c, first, last, ax, ay);
+}
+
+void accumulate_kind(const CustomForce& f, const FieldContext& c, std::size_t first,
+                     std::size_t last, std::span<double> ax, std::span<double> ay) {
+  accumulate_each(c, first, last, ax, ay, [&](std::size_t i) {
+    const Vec2 force = f.force(c, i);
+    if (!force.is_finite()) {
+      throw Error("field custom_force: returned a non-finite force for body " + std::to_string(i));
+    }
+    return force;
+  });
+}
+
 }  // namespace
 
 const char* field_name(const Field& field) {
@@ -236,46 +268,9 @@ void validate(const Field& field) {
 void accumulate(const Field& field, const FieldContext& c, std::size_t first, std::size_t last,
                 std::span<double> ax, std::span<double> ay) {
   std::visit(
-      Overloaded{
-          [&](const NoiseWind& f) {
-    if (!f.enabled) return;
-    if (c.noise == nullptr) throw Error("field noise_wind: the world has no noise");
-    // Accumulating: the noise is read at offset itself (0 * rate adds nothing).
-    const double time = f.accumulate ? 0.0 : c.time;
-    const Vec2 force = noise_wind(*c.noise, time, f.strength, f.rate, f.offset);
-    accumulate_law<NoiseWind>({.fx = force.x, .fy = force.y}, c, first, last, ax, ay);
-          },
-          // The plain loops of a kind with a force of its own (any attraction law).
-          [&]<class F>(const F& f) requires requires { FieldKind<F>::force(f, c, first);
-}
-{
-  if (!f.enabled) return;
-  accumulate_each(c, first, last, ax, ay,
-                  [&](std::size_t i) { return FieldKind<F>::force(f, c, i); });
-}
-,
-    // The kinds with a law over lanes (gravity, drag, fan, ...).
-    [&]<class F>(const F& f) requires(HasLaw<F> &&
-                                      !requires { FieldKind<F>::force(f, c, first); }) {
-  if (f.enabled) accumulate_law<F>(FieldKind<F>::template law<double>(f), c, first, last, ax, ay);
-}
-,
-    [&](const MutualAttraction& f) {
-      if (f.enabled) accumulate_mutual(f, c, first, last, ax, ay);
-    },
-    [&](const CustomForce& f) {
-      if (!f.enabled) return;
-      accumulate_each(c, first, last, ax, ay, [&](std::size_t i) {
-        const Vec2 force = f.force(c, i);
-        if (!force.is_finite()) {
-          throw Error("field custom_force: returned a non-finite force for body " +
-                      std::to_string(i));
-        }
-        return force;
-      });
-    },
-}  // namespace calder
-,
+      [&](const auto& f) {
+        if (f.enabled) accumulate_kind(f, c, first, last, ax, ay);
+      },
       field);
 }
 
