@@ -57,7 +57,7 @@ struct Op {
 
 struct Plan {
   std::vector<Op> ops;
-  std::vector<double> per_step;  // storage behind Op::per_step
+  std::vector<double> per_step;  // storage behind the noise winds' Law::per_step
   Boundary boundary{};
   double width = 0.0;
   double height = 0.0;

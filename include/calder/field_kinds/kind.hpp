@@ -88,9 +88,13 @@ struct Parameter {
 // field_name, validate, accumulate, the scene reader and writer, the Python
 // classes and the docs' lists of kinds all work from it (they std::visit
 // Field, so a kind without a FieldKind doesn't compile). Besides name and
-// parameters a kind may have:
+// parameters a kind has a summary, one line that the Python class shows as
+// its docstring:
 //
-//   static constexpr const char* summary = "...";  // one line for docs and bindings
+//   static constexpr const char* summary = "...";
+//
+// and it may have:
+//
 //   static constexpr bool in_scene_files = false;  // C++ code, no scene-file form
 //   static constexpr auto position = &F::position; // it can follow the mouse
 //   static void check(const F&, const std::string& where);  // rules across parameters
