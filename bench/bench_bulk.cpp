@@ -11,7 +11,7 @@ namespace calder::app::bench {
 class PlainLoops {
  public:
   PlainLoops() { set_step_batch_backend(nullptr); }
-  ~PlainLoops() { bulk::install(); }
+  ~PlainLoops() { set_step_batch_backend(bulk::step_batch); }
   PlainLoops(const PlainLoops&) = delete;
   PlainLoops& operator=(const PlainLoops&) = delete;
 };
@@ -157,7 +157,7 @@ std::vector<std::string> bulk_notes(const std::string& floor_flags) {
 }  // namespace
 
 Section bulk_section(const Plan& plan, Runner& runner, Results& results) {
-  bulk::install();
+  set_step_batch_backend(bulk::step_batch);  // the kernels, whatever ran before
   Section section;
   section.title = "calder::bulk, the rain scene: body-steps per second";
   Table table;

@@ -29,7 +29,6 @@
 namespace {
 
 void Calder(benchmark::State& state) {
-  calder::bulk::install();
   const auto n = static_cast<std::size_t>(state.range(0));
   calder::World world = calder::peers::rain_world(
       n, static_cast<calder::Arithmetic>(state.range(1)), static_cast<int>(state.range(2)));
@@ -50,11 +49,10 @@ void CalderPlain(benchmark::State& state) {
     benchmark::DoNotOptimize(world.bodies().x.data());
   }
   state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(n));
-  calder::bulk::install();
+  calder::set_step_batch_backend(calder::bulk::step_batch);
 }
 
 void SoaFloor(benchmark::State& state) {
-  calder::bulk::install();
   const auto n = static_cast<std::size_t>(state.range(0));
   const bool avx2 = std::string(calder::bulk::kernel_name()) == "avx2+fma";
   calder::peers::SoaRain soa(calder::peers::rain_world(n), state.range(1) != 0, avx2,

@@ -144,7 +144,7 @@ void rain_rows(const Plan& plan, Runner& runner, Table& table, Arithmetic arithm
 }  // namespace
 
 Section scaling_section(const Plan& plan, Runner& runner) {
-  bulk::install();
+  set_step_batch_backend(bulk::step_batch);  // the kernels, whatever ran before
   Section section;
   section.title = "scaling with the thread count";
   Table table;

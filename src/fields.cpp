@@ -19,27 +19,11 @@ double BodyView::friction_or(std::size_t i, double fallback) const {
 
 bool touches_edge(Edge edge, Vec2 position, double radius, double width, double height,
                   double tolerance) {
-  switch (edge) {
-    case Edge::left:
-      return position.x < radius + tolerance;
-    case Edge::right:
-      return position.x > width - radius - tolerance;
-    case Edge::top:
-      return position.y < radius + tolerance;
-    case Edge::bottom:
-      return position.y > height - radius - tolerance;
-  }
-  return false;
+  return laws::touches<lanes::ScalarBook>(edge, position.x, position.y, radius, tolerance, width,
+                                          height);
 }
 
 namespace {
-
-template <class... Ts>
-struct Overloaded : Ts... {
-  using Ts::operator()...;
-};
-template <class... Ts>
-Overloaded(Ts...) -> Overloaded<Ts...>;
 
 void require_finite_vec(Vec2 v, const char* where, const char* what) {
   detail::require_finite(v.x, where, what);
@@ -53,12 +37,6 @@ inline void add_force(std::span<double> ax, std::span<double> ay, std::size_t i,
   ay[i] += force.y / mass;
 }
 
-// Applies the same force to every body of the range.
-void accumulate_uniform(Vec2 force, const FieldContext& c, std::size_t first, std::size_t last,
-                        std::span<double> ax, std::span<double> ay) {
-  for (std::size_t i = first; i < last; ++i) add_force(ax, ay, i, force, c.bodies.mass[i]);
-}
-
 // Applies force_of(i) to every body of the range.
 template <class ForceOf>
 void accumulate_each(const FieldContext& c, std::size_t first, std::size_t last,
@@ -66,30 +44,37 @@ void accumulate_each(const FieldContext& c, std::size_t first, std::size_t last,
   for (std::size_t i = first; i < last; ++i) add_force(ax, ay, i, force_of(i), c.bodies.mass[i]);
 }
 
-// Friction on the bodies of the range that touch its surface.
-void accumulate_friction(const Friction& f, const FieldContext& c, std::size_t first,
-                         std::size_t last, std::span<double> ax, std::span<double> ay) {
-  const BodyView& b = c.bodies;
-  for (std::size_t i = first; i < last; ++i) {
-    if (!touches_edge(f.surface, b.position(i), b.radius[i], c.width, c.height, f.tolerance)) {
-      continue;
-    }
-    Vec2 force = friction(b.velocity(i), b.friction_or(i, f.mu), f.normal);
-    if (f.never_reverse) force = limit_drag(force, b.velocity(i), b.mass[i], c.dt);
-    add_force(ax, ay, i, force, b.mass[i]);
-  }
-}
+// One body as the laws of calder/field_kinds/ read it (lanes.hpp): its state,
+// the acceleration the fields add to, and its constants from the view.
+struct BodyLane {
+  double x, y, vx, vy, ax, ay;
+  const BodyView* view;
+  std::size_t i;
+  [[nodiscard]] double m() const { return view->mass[i]; }
+  [[nodiscard]] double inv_m() const { return 1.0 / view->mass[i]; }
+  [[nodiscard]] double r() const { return view->radius[i]; }
+  [[nodiscard]] double area() const { return view->drag_area[i]; }
+  [[nodiscard]] double mu() const { return view->friction[i]; }  // NaN: none of its own
+};
 
-// Drag on the bodies of the range inside the liquid.
-void accumulate_liquid(const Liquid& f, const FieldContext& c, std::size_t first, std::size_t last,
-                       std::span<double> ax, std::span<double> ay) {
-  const BodyView& b = c.bodies;
-  for (std::size_t i = first; i < last; ++i) {
-    if (!f.contains(b.position(i))) continue;
-    Vec2 force = drag(b.velocity(i), f.c, b.drag_area[i]);
-    if (f.never_reverse) force = limit_drag(force, b.velocity(i), b.mass[i], c.dt);
-    add_force(ax, ay, i, force, b.mass[i]);
-  }
+// A kind's law (FieldKind<F>::run) on the bodies of the range, one at a time,
+// in the book's arithmetic.
+template <class F>
+void accumulate_law(const typename FieldKind<F>::template Law<double>& law, const FieldContext& c,
+                    std::size_t first, std::size_t last, std::span<double> ax,
+                    std::span<double> ay) {
+  const BodyView& v = c.bodies;
+  const lanes::Frame<double> frame{c.width, c.height, c.dt, 0};
+  FieldKind<F>::template run<lanes::ScalarBook>(
+      [&](auto op) {
+        for (std::size_t i = first; i < last; ++i) {
+          BodyLane b{v.x[i], v.y[i], v.vx[i], v.vy[i], ax[i], ay[i], &v, i};
+          op(b);
+          ax[i] = b.ax;
+          ay[i] = b.ay;
+        }
+      },
+      law, frame);
 }
 
 void accumulate_mutual(const MutualAttraction& f, const FieldContext& c, std::size_t first,
@@ -110,9 +95,8 @@ void accumulate_mutual(const MutualAttraction& f, const FieldContext& c, std::si
         Backends{.mutual_attraction = c.mutual_attraction}.or_defaults().mutual_attraction;
     if (backend == nullptr) {
       throw Error(
-          "field mutual_attraction: method direct and barnes_hut need calder::nbody (link "
-          "calder::nbody and set WorldDef::backends.mutual_attraction = "
-          "calder::nbody::mutual_attraction, or call calder::nbody::install())");
+          "field mutual_attraction: method direct and barnes_hut need calder::nbody's kernels "
+          "(link calder::nbody: it registers them)");
     }
     for (std::size_t i = 0; i < n; ++i) central_pulls(i);
     backend(f, c, ax, ay);
@@ -153,6 +137,45 @@ void accumulate_mutual(const MutualAttraction& f, const FieldContext& c, std::si
       add_force(ax, ay, i, -force, b.mass[i]);
     }
   }
+}
+
+// An enabled field on the bodies of the range: its law, one body at a time;
+// or, for a kind with a force of its own (the attractor: any attraction
+// law), that force; the noise wind and the kinds without a law have their own.
+template <class F>
+void accumulate_kind(const F& f, const FieldContext& c, std::size_t first, std::size_t last,
+                     std::span<double> ax, std::span<double> ay) {
+  if constexpr (requires { FieldKind<F>::force(f, c, first); }) {
+    accumulate_each(c, first, last, ax, ay,
+                    [&](std::size_t i) { return FieldKind<F>::force(f, c, i); });
+  } else {
+    accumulate_law<F>(FieldKind<F>::template law<double>(f), c, first, last, ax, ay);
+  }
+}
+
+void accumulate_kind(const NoiseWind& f, const FieldContext& c, std::size_t first, std::size_t last,
+                     std::span<double> ax, std::span<double> ay) {
+  if (c.noise == nullptr) throw Error("field noise_wind: the world has no noise");
+  // Accumulating: the noise is read at offset itself (0 * rate adds nothing).
+  const double time = f.accumulate ? 0.0 : c.time;
+  const Vec2 force = noise_wind(*c.noise, time, f.strength, f.rate, f.offset);
+  accumulate_law<NoiseWind>({.fx = force.x, .fy = force.y}, c, first, last, ax, ay);
+}
+
+void accumulate_kind(const MutualAttraction& f, const FieldContext& c, std::size_t first,
+                     std::size_t last, std::span<double> ax, std::span<double> ay) {
+  accumulate_mutual(f, c, first, last, ax, ay);
+}
+
+void accumulate_kind(const CustomForce& f, const FieldContext& c, std::size_t first,
+                     std::size_t last, std::span<double> ax, std::span<double> ay) {
+  accumulate_each(c, first, last, ax, ay, [&](std::size_t i) {
+    const Vec2 force = f.force(c, i);
+    if (!force.is_finite()) {
+      throw Error("field custom_force: returned a non-finite force for body " + std::to_string(i));
+    }
+    return force;
+  });
 }
 
 }  // namespace
@@ -244,61 +267,10 @@ void validate(const Field& field) {
 
 void accumulate(const Field& field, const FieldContext& c, std::size_t first, std::size_t last,
                 std::span<double> ax, std::span<double> ay) {
-  const BodyView& b = c.bodies;
   std::visit(
-      Overloaded{
-          [&](const Gravity& f) {
-    if (!f.enabled) return;
-    if (!f.scale_by_mass) return accumulate_uniform(f.g, c, first, last, ax, ay);
-    accumulate_each(c, first, last, ax, ay,
-                    [&](std::size_t i) { return gravity(f.g, b.mass[i], true); });
-          },
-          [&](const Wind& f) {
-    if (f.enabled) accumulate_uniform(f.force, c, first, last, ax, ay);
-          },
-          [&](const NoiseWind& f) {
-    if (!f.enabled) return;
-    if (c.noise == nullptr) throw Error("field noise_wind: the world has no noise");
-    // Accumulating: the noise is read at offset itself (0 * rate adds nothing).
-    const double time = f.accumulate ? 0.0 : c.time;
-    accumulate_uniform(noise_wind(*c.noise, time, f.strength, f.rate, f.offset), c, first, last, ax,
-                       ay);
-          },
-          [&](const Helium& f) {
-    if (f.enabled) accumulate_uniform(helium(f.lift), c, first, last, ax, ay);
-          },
-          [&](const Friction& f) {
-    if (f.enabled) accumulate_friction(f, c, first, last, ax, ay);
-          },
-          [&](const Liquid& f) {
-    if (f.enabled) accumulate_liquid(f, c, first, last, ax, ay);
-          },
-          // The kinds whose FieldKind gives the force on each body (fan, drag, ...).
-          [&]<class F>(const F& f)
-            requires requires { FieldKind<F>::force(f, c, first);
-}
-{
-  if (!f.enabled) return;
-  accumulate_each(c, first, last, ax, ay,
-                  [&](std::size_t i) { return FieldKind<F>::force(f, c, i); });
-}
-,
-    [&](const MutualAttraction& f) {
-      if (f.enabled) accumulate_mutual(f, c, first, last, ax, ay);
-    },
-    [&](const CustomForce& f) {
-      if (!f.enabled) return;
-      accumulate_each(c, first, last, ax, ay, [&](std::size_t i) {
-        const Vec2 force = f.force(c, i);
-        if (!force.is_finite()) {
-          throw Error("field custom_force: returned a non-finite force for body " +
-                      std::to_string(i));
-        }
-        return force;
-      });
-    },
-}  // namespace calder
-,
+      [&](const auto& f) {
+        if (f.enabled) accumulate_kind(f, c, first, last, ax, ay);
+      },
       field);
 }
 

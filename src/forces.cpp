@@ -6,66 +6,67 @@
 
 #include "calder/detmath.hpp"
 #include "calder/error.hpp"
+#include "calder/fields.hpp"
 #include "calder/random.hpp"
 
+// The laws are the field kinds' (calder/field_kinds/), instantiated here for
+// one body in the book's arithmetic.
 namespace calder {
+
+namespace {
+
+using lanes::ScalarBook;
+
+Vec2 vec(lanes::Pair<double> f) { return {f.x, f.y}; }
+
+}  // namespace
 
 Vec2 gravity(Vec2 g, double mass, bool scale_by_mass) {
   // p5.Vector.mult(gravity, mass): (0 * m, 0.1 * m), component by component.
   return scale_by_mass ? g * mass : g;
 }
 
-Vec2 helium(double lift) { return {0.0, -lift}; }
+Vec2 helium(double lift) {
+  const auto law = FieldKind<Helium>::law<double>(Helium{.lift = lift});
+  return {law.fx, law.fy};
+}
 
 Vec2 noise_wind(const Noise& noise, double time, double strength, double rate, double offset) {
-  const double n = noise.noise(offset + time * rate);
-  return {map_range(n, 0.0, 1.0, -strength, strength), 0.0};
+  return FieldKind<NoiseWind>::force<ScalarBook>(noise, time, strength, rate, offset);
 }
 
 Vec2 fan(Vec2 fan_position, Vec2 body_position, double strength, double reach) {
-  Vec2 away = body_position - fan_position;
-  const double d = away.mag();
-  if (d == 0.0 || d >= reach) return {};
-  return away.set_mag(strength * (1.0 - d / reach));
+  const auto law = FieldKind<Fan>::law<double>(
+      Fan{.position = fan_position, .strength = strength, .reach = reach});
+  const auto blow = FieldKind<Fan>::force<ScalarBook>(law, body_position.x, body_position.y);
+  return blow.apply ? vec(blow.f) : Vec2{};
 }
 
 Vec2 edge_force(Vec2 position, double width, double height, double strength, double margin) {
-  // Inward push for one edge at distance d: zero at the margin, growing toward the edge.
-  const auto push = [&](double d) { return d < margin ? strength * (margin - d) / margin : 0.0; };
-  return {push(position.x) - push(width - position.x),
-          push(position.y) - push(height - position.y)};
+  const auto law =
+      FieldKind<EdgeForce>::law<double>(EdgeForce{.strength = strength, .margin = margin});
+  return vec(FieldKind<EdgeForce>::force<ScalarBook>(law, position.x, position.y, width, height));
 }
 
 Vec2 friction(Vec2 velocity, double mu, double normal) {
-  // The book: friction = velocity.copy(); friction.mult(-1); friction.setMag(c * normal).
-  Vec2 f = velocity;
-  f.mult(-1.0);
-  f.set_mag(mu * normal);
-  return f;
+  return vec(laws::friction<ScalarBook>(velocity.x, velocity.y, velocity.mag(), mu, normal));
 }
 
 Vec2 drag(Vec2 velocity, double c, double area) {
-  // The book: speed = v.mag(); dragMagnitude = c * speed * speed; the force is
-  // -v with that magnitude. area = 1 leaves every bit as the book has it.
-  const double speed = velocity.mag();
-  const double magnitude = c * speed * speed * area;
-  Vec2 f = velocity;
-  f.mult(-1.0);
-  f.set_mag(magnitude);
-  return f;
+  return vec(laws::drag<ScalarBook>(velocity.x, velocity.y, velocity.mag(), c, area));
 }
 
 Vec2 limit_drag(Vec2 drag_force, Vec2 velocity, double mass, double dt) {
-  // One step changes the velocity by F / m * dt; keep that within |v|.
-  return drag_force.limit(mass * velocity.mag() / dt);
+  lanes::Pair<double> f{drag_force.x, drag_force.y};
+  lanes::never_reverse<ScalarBook>(f, mass, velocity.mag(), dt);
+  return vec(f);
 }
 
 Vec2 lift(Vec2 velocity, double coefficient) {
-  const double speed_sq = velocity.mag_sq();
-  // Perpendicular on the left of the motion with y down: (vy, -vx).
-  Vec2 f{velocity.y, -velocity.x};
-  return f.set_mag(coefficient * speed_sq);
+  return vec(FieldKind<Lift>::force<ScalarBook>(velocity.x, velocity.y, coefficient));
 }
+
+Vec2 Liquid::calculate_drag(Vec2 velocity, double area) const { return drag(velocity, c, area); }
 
 AttractionLaw AttractionLaw::book(double G, double min_distance, double max_distance,
                                   MassProduct product) {
@@ -178,32 +179,27 @@ Vec2 attraction(Vec2 source_position, double source_mass, Vec2 target_position, 
     }
     return force.set_mag(magnitude);
   }
-  switch (law.clamp) {
-    case DistanceClamp::distance: {
-      double d = force.mag();
-      d = constrain(d, law.min, law.max);
-      return force.set_mag(power_strength(law, source_mass, target_mass, d));
-    }
-    case DistanceClamp::squared_distance: {
-      const double dsq = constrain(force.mag_sq(), law.min, law.max);
-      return force.set_mag(strength_of(law.G, source_mass, target_mass, dsq, law.product));
-    }
-    case DistanceClamp::none:
-      break;
+  // The squared clamp and softening need exponent 2 (AttractionLaw::validate):
+  // they are inverse-square laws whatever the exponent says.
+  if (law.inverse_square() || law.clamp == DistanceClamp::squared_distance ||
+      law.softening != 0.0) {
+    const auto p = laws::inverse_square_law<double>(source_position, source_mass, law);
+    Vec2 out;
+    laws::with_inverse_square_case(p, [&]<DistanceClamp kClamp, bool kSoftened>() {
+      const auto pull = laws::inverse_square<ScalarBook, kClamp, kSoftened>(
+          p, target_position.x, target_position.y, target_mass);
+      out = pull.apply ? vec(pull.f) : Vec2{};
+    });
+    return out;
+  }
+  // The power laws with a repulsive core (exercise 2.13).
+  if (law.clamp == DistanceClamp::distance) {
+    const double d = constrain(force.mag(), law.min, law.max);
+    return force.set_mag(power_strength(law, source_mass, target_mass, d));
   }
   const double d_sq = force.mag_sq();
-  if (d_sq == 0.0) return {};  // coincident: no direction (softened force is zero there too)
-  if (law.softening == 0.0) {
-    if (law.exponent == 2.0 && law.repulsion == 0.0) {
-      return force.set_mag(strength_of(law.G, source_mass, target_mass, d_sq, law.product));
-    }
-    return force.set_mag(power_strength(law, source_mass, target_mass, std::sqrt(d_sq)));
-  }
-  // Plummer: |F| = G M m d / (d^2 + eps^2)^(3/2).
-  const double s_sq = d_sq + law.softening * law.softening;
-  const double d = std::sqrt(d_sq);
-  return force.set_mag(
-      strength_of(law.G, source_mass, target_mass, s_sq * std::sqrt(s_sq), law.product) * d);
+  if (d_sq == 0.0) return {};  // coincident: no direction
+  return force.set_mag(power_strength(law, source_mass, target_mass, std::sqrt(d_sq)));
 }
 
 double attraction_potential(double distance, double source_mass, double target_mass,

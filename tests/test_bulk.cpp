@@ -60,12 +60,15 @@ using calder::Wind;
 using calder::World;
 using calder::WorldDef;
 
-// Registers the kernels around every test: tests share one process, and some
-// (here and elsewhere) unregister them to get the plain loops.
+// Makes the kernels the process default again, as linking calder::bulk made
+// them: some tests replace the default to get the plain loops.
+void use_kernels() { calder::set_step_batch_backend(calder::bulk::step_batch); }
+
+// The kernels around every test: tests share one process.
 class BulkTest : public ::testing::Test {
  protected:
-  void SetUp() override { calder::bulk::install(); }
-  void TearDown() override { calder::bulk::install(); }
+  void SetUp() override { use_kernels(); }
+  void TearDown() override { use_kernels(); }
 };
 
 // The plain per-body loops for its lifetime (no batch backend), then the
@@ -73,7 +76,7 @@ class BulkTest : public ::testing::Test {
 class PlainLoops {
  public:
   PlainLoops() { calder::set_step_batch_backend(nullptr); }
-  ~PlainLoops() { calder::bulk::install(); }
+  ~PlainLoops() { use_kernels(); }
   PlainLoops(const PlainLoops&) = delete;
   PlainLoops& operator=(const PlainLoops&) = delete;
 };
@@ -95,7 +98,7 @@ struct Outcome {
 };
 
 Outcome run_kernels(const World& start, int count) {
-  calder::bulk::install();
+  use_kernels();
   Outcome run{start, ""};
   run.error = step_catching(run.world, count);
   return run;
@@ -450,8 +453,8 @@ const FieldCase kFieldCases[] = {
 
 class BulkBookTest : public ::testing::TestWithParam<FieldCase> {
  protected:
-  void SetUp() override { calder::bulk::install(); }
-  void TearDown() override { calder::bulk::install(); }
+  void SetUp() override { use_kernels(); }
+  void TearDown() override { use_kernels(); }
 };
 
 TEST_P(BulkBookTest, StepsTheSameBitsAsThePlainLoops) {
@@ -527,6 +530,18 @@ bool recording_backend(const calder::StepBatch& batch, std::string* why_not) {
   return false;
 }
 
+// Linking calder::bulk is all it takes: the test program names no call that
+// registers the kernels, and a world that asks for float32 gets them.
+TEST(MoversLinked, TheKernelsAreTheDefaultOfAProgramThatLinksThem) {
+  ASSERT_EQ(calder::Backends{}.or_defaults().step_batch, &calder::bulk::step_batch);
+  World world({.arithmetic = Arithmetic::float32});
+  const calder::BodyId id = world.add_body({.position = {10.0, 0.0}});
+  world.add(Gravity{});
+  world.step(10);
+  // Gravity alone from rest: y grows by g (1 + 2 + ... + 10) = 5.5 px (in float).
+  EXPECT_NEAR(world.position(id).y, 5.5, 1e-5);
+}
+
 // The sizes of the tests above reach the backend: else their book runs would
 // compare the plain loops with themselves.
 TEST_F(BulkTest, LargeStepsGoToTheBackend) {
@@ -536,13 +551,13 @@ TEST_F(BulkTest, LargeStepsGoToTheBackend) {
   world.step(300);  // declined at the first batch: the loops do the rest
   world.step(7);
   world.step(3);  // 3111 body-steps, under the threshold of 4096: no batch
-  calder::bulk::install();
+  use_kernels();
   EXPECT_EQ(recorded_batches, (std::vector<int>{World::kBatchSteps, 7}));
   EXPECT_EQ(world.step_count(), 310);
 }
 
 // A world's own backend wins over the process default, and a world can have
-// the kernels with no default installed.
+// the kernels with no default set.
 TEST_F(BulkTest, BackendsArePerWorld) {
   World recorded = random_world(kFieldCases[0], 1);
   calder::WorldDef def;
@@ -550,7 +565,7 @@ TEST_F(BulkTest, BackendsArePerWorld) {
   World own(def);
   own.add_bodies(calder::BodyColumns{.x = recorded.bodies().x, .y = recorded.bodies().y});
   recorded_batches.clear();
-  own.step(300);  // the default (calder::bulk, installed) is not asked
+  own.step(300);  // the default (the kernels) is not asked
   EXPECT_EQ(recorded_batches, (std::vector<int>{World::kBatchSteps}));
 
   calder::set_step_batch_backend(nullptr);
@@ -564,7 +579,7 @@ TEST_F(BulkTest, BackendsArePerWorld) {
   fast.add_bodies(calder::BodyColumns{.x = recorded.bodies().x, .y = recorded.bodies().y});
   fast.add(calder::Gravity{});
   fast.step(10);
-  calder::bulk::install();
+  use_kernels();
   EXPECT_EQ(fast.step_count(), 10);
   // Gravity alone from rest: y grows by g (1 + 2 + ... + 10) = 5.5 px.
   EXPECT_NEAR(fast.position(fast.body(0)).y - recorded.position(recorded.body(0)).y, 5.5, 1e-12);

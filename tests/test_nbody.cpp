@@ -929,8 +929,9 @@ double largest_difference(const std::vector<Vec2>& a, const std::vector<Vec2>& b
   return d;
 }
 
+// Linking calder::nbody makes its kernels the default of every world: no call.
 TEST(NbodyInstall, MutualAttractionUsesTheFastMethods) {
-  nb::install();
+  ASSERT_EQ(calder::Backends{}.or_defaults().mutual_attraction, &nb::mutual_attraction);
   const System s = disk(300, 21, 50.0, 320.0, 120.0);
   for (const calder::AttractionLaw& law :
        {calder::AttractionLaw::newtonian(1.0, 0.5), calder::AttractionLaw::book(1.0, 2.0, 20.0)}) {

@@ -9,8 +9,6 @@
 //
 // Exit status: 0 success, 1 the run failed, 2 bad usage or bad input; every
 // error is one line on stderr, "calder: <message>".
-#include <calder/bulk.hpp>
-#include <calder/nbody.hpp>
 #include <calder/render.hpp>
 #include <iostream>
 
@@ -18,8 +16,6 @@
 
 int main(int argc, char** argv) {
   std::ios::sync_with_stdio(false);
-  calder::nbody::install();  // scenes may ask for method = "direct" or "barnes_hut"
-  calder::bulk::install();   // large worlds step through the vectorised, threaded kernels
   const int status = calder::app::main(argc, argv, std::cout, std::cerr);
   calder::release_render_caches();  // a clean exit for leak checkers
   return status;

@@ -8,9 +8,10 @@
 //   calder::World world({.backends = {.step_batch = calder::bulk::step_batch,
 //                                     .mutual_attraction = calder::nbody::mutual_attraction}});
 //
-// A backend left null there is the process default, which
-// calder::bulk::install() and calder::nbody::install() set (the
-// `calder` command, the Python module and the web build call them).
+// A backend left null there is the process default: the kernels of the
+// component libraries linked into the program. Linking calder::bulk or
+// calder::nbody is all it takes; each registers itself before main (see
+// docs/DESIGN.md, "Fast paths beside the book path").
 #pragma once
 
 #include <span>
@@ -34,7 +35,7 @@ using StepBatchBackend = bool (*)(const StepBatch& batch, std::string* why_not);
 using MutualAttractionBackend = void (*)(const MutualAttraction& field, const FieldContext& context,
                                          std::span<double> ax, std::span<double> ay);
 
-// A world's kernels; null: the process default.
+// A world's kernels; null: the process default (the linked component's).
 struct Backends {
   StepBatchBackend step_batch = nullptr;
   MutualAttractionBackend mutual_attraction = nullptr;
@@ -43,8 +44,11 @@ struct Backends {
   [[nodiscard]] Backends or_defaults() const;
 };
 
-// The process defaults (null: none, the plain loops; a fast method then
-// throws calder::Error at the step).
+// The process defaults. A linked component sets its own while the program
+// starts (its registration object, kept in by the component's link options);
+// nothing else needs to. A program may replace one (null: none, the plain
+// loops; a fast method or arithmetic then throws calder::Error at the step),
+// as the tests do to compare the kernels with the plain loops.
 void set_step_batch_backend(StepBatchBackend backend);
 void set_mutual_attraction_backend(MutualAttractionBackend backend);
 

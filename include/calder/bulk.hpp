@@ -3,21 +3,21 @@
 // thousands to millions of movers that don't interact (rain, particles,
 // crowds under wind and drag).
 //
-// A world whose WorldDef::backends.step_batch is calder::bulk::step_batch
-// (or any world, after calder::bulk::install()) hands its large steps,
+// A program linked with calder::bulk hands the large steps of its worlds,
 // World::step(count), to these kernels instead of stepping body by body
-// through the fields:
+// through the fields (the library registers them as the process default of
+// calder/backends.hpp; a world may name other kernels in
+// WorldDef::backends.step_batch):
 //
-//   calder::World world({.arithmetic = calder::Arithmetic::book, .threads = 0,
-//                        .backends = {.step_batch = calder::bulk::step_batch}});
+//   calder::World world({.arithmetic = calder::Arithmetic::float32});
 //   ... add 100000 bodies, Gravity, Drag, a bounce boundary ...
 //   world.step(1000);                     // vectorised, threaded, cache-blocked
 //
-// What they run: semi-implicit Euler, the simultaneous update order, and the
-// fields Gravity, Wind, NoiseWind, Helium, Fan, EdgeForce, Friction, Liquid,
-// Drag, Lift and Attractor (the inverse-square laws: the book clamp, the
-// squared clamp, Plummer), with the bounce, wrap or no boundary. A world with
-// mutual attraction or a custom force steps body by body as before.
+// What they run: semi-implicit Euler, the simultaneous update order, and
+// every field kind with a law over lanes (calder/field_kinds/; an Attractor
+// with the inverse-square laws: the book clamp, the squared clamp, Plummer),
+// with the bounce, wrap or no boundary: all kinds but MutualAttraction and
+// CustomForce, which step body by body as before (unsupported() says why).
 //
 // How: the fields are compiled once per batch into a list of ops (plan.cpp:
 // one op per enabled field). The bodies are cut into tiles of kTile; one
@@ -55,10 +55,6 @@ inline constexpr std::size_t kTile = 256;
 // The kernels as a StepBatchBackend (calder/backends.hpp), for
 // WorldDef::backends.step_batch.
 bool step_batch(const StepBatch& batch, std::string* why_not);
-
-// Makes them the process default of worlds that name none
-// (calder::set_step_batch_backend). Idempotent.
-void install();
 
 // Whether the kernels can step this world: "" when they can, otherwise why
 // not (e.g. "field custom_force has no kernel").

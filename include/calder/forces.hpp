@@ -1,8 +1,10 @@
 // SPDX-License-Identifier: MIT
 // calder: the force laws of chapter 2, each one function returning a force.
 //
-// Every law lives here once. The fields of calder/fields.hpp apply them to
-// all bodies of a world each step; book-style code calls them directly:
+// Book-style code calls them directly; the fields of calder/fields.hpp apply
+// the same laws to all bodies of a world each step. Each law is written once,
+// with its field kind (calder/field_kinds/), and these functions run it for
+// one body:
 //
 //   mover.apply_force(calder::friction(mover.velocity(), 0.1));
 //

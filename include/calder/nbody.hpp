@@ -232,9 +232,8 @@ void barnes_hut_accelerations(std::span<const double> x, std::span<const double>
 // Barnes-Hut keeps one solver per calling thread.
 void mutual_attraction(const MutualAttraction& field, const FieldContext& context,
                        std::span<double> ax, std::span<double> ay);
-// Makes it the process default of worlds that name none
-// (calder::set_mutual_attraction_backend). Idempotent.
-void install();
+// Linking calder::nbody makes it the process default of worlds that name
+// none (src/nbody/install.cpp): no call needed.
 
 // --- about the build --------------------------------------------------------------
 

@@ -142,8 +142,8 @@ struct WorldDef {
   // p5's vel.limit(topSpeed) (semi_implicit_euler, book arithmetic); 0, none.
   double max_speed = 0.0;
   // The whole-world kernels of this world (calder/backends.hpp); null: the
-  // process defaults that calder::bulk::install() and
-  // calder::nbody::install() set.
+  // process defaults, the kernels of calder::bulk and calder::nbody when the
+  // program links them.
   Backends backends{};
 };
 

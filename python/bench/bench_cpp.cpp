@@ -59,7 +59,6 @@ calder::World rain(const Drops& d, double width, double height, bool add_fields)
 }  // namespace
 
 int main(int argc, char** argv) {
-  calder::bulk::install();
   const int repeat = argc > 1 ? std::atoi(argv[1]) : 5;
   const int small_calls = 200'000;
   const int rain_steps = 1000;

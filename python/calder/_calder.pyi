@@ -227,8 +227,9 @@ class NoiseWind(_Field):
     strength: float
     rate: float
     offset: float
+    accumulate: bool
     def __init__(self, *, strength: float = 0.1, rate: float = 0.01, offset: float = 0.0,
-                 enabled: bool = True) -> None: ...
+                 accumulate: bool = False, enabled: bool = True) -> None: ...
     def copy(self) -> NoiseWind: ...
 
 class Helium(_Field):
@@ -296,14 +297,14 @@ class Attractor(_Field):
 class MutualAttraction(_Field):
     law: AttractionLaw
     order: PairOrder
-    central: Optional[CentralBody]
     method: NBodyMethod
     theta: float
     single_precision: bool
     threads: int
+    central: Optional[CentralBody]
     def __init__(self, *, law: AttractionLaw = ..., order: PairOrder = ...,
-                 central: Optional[CentralBody] = None, method: NBodyMethod = ...,
-                 theta: float = 0.7, single_precision: bool = False, threads: int = 0,
+                 method: NBodyMethod = ..., theta: float = 0.7, single_precision: bool = False,
+                 threads: int = 0, central: Optional[CentralBody] = None,
                  enabled: bool = True) -> None: ...
     def copy(self) -> MutualAttraction: ...
 

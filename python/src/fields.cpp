@@ -11,8 +11,11 @@
 #include <calder/error.hpp>
 #include <calder/fields.hpp>
 #include <calder/random.hpp>
+#include <cctype>
 #include <memory>
 #include <string>
+#include <tuple>
+#include <variant>
 
 #include "bindings.hpp"
 
@@ -159,6 +162,54 @@ FieldClass<F> field_class(py::module_& m, const char* name, const char* doc) {
   return c;
 }
 
+// "edge_force" -> "EdgeForce": a kind's class name from its FieldKind::name.
+std::string class_name(const char* kind) {
+  std::string out;
+  bool upper = true;
+  for (const char* c = kind; *c != '\0'; ++c) {
+    if (*c == '_') {
+      upper = true;
+      continue;
+    }
+    out += upper ? static_cast<char>(std::toupper(static_cast<unsigned char>(*c))) : *c;
+    upper = false;
+  }
+  return out;
+}
+
+// A kind's class from its description (FieldKind<F>): its name, its summary
+// as the docstring, a property for each parameter.
+template <class F>
+FieldClass<F> kind_class(py::module_& m) {
+  using Kind = FieldKind<F>;
+  static const std::string name = class_name(Kind::name);  // the class keeps a pointer to it
+  FieldClass<F> c = field_class<F>(m, name.c_str(), Kind::summary);
+  std::apply([&c](const auto&... p) { (parameter(c, p.key, p.member), ...); }, Kind::parameters);
+  return c;
+}
+
+template <class... Fs>
+std::tuple<FieldClass<Fs>...> kind_classes(py::module_& m, const std::variant<Fs...>*) {
+  return {kind_class<Fs>(m)...};
+}
+
+// The kinds' descriptions, for the stub's test: class, name, parameter keys,
+// whether scene files hold it.
+template <class... Fs>
+py::list describe_kinds(const std::variant<Fs...>*) {
+  py::list out;
+  (
+      [&] {
+        py::list keys;
+        std::apply([&keys](const auto&... p) { (keys.append(p.key), ...); },
+                   FieldKind<Fs>::parameters);
+        out.append(py::make_tuple(class_name(FieldKind<Fs>::name), FieldKind<Fs>::name, keys,
+                                  in_scene_files<Fs>()));
+      }(),
+      ...);
+  return out;
+}
+
 template <class F>
 bool add_if(const py::object& owner, World& world, py::handle field, py::object& result) {
   if (!py::isinstance<FieldRef<F>>(field)) return false;
@@ -170,7 +221,8 @@ bool add_if(const py::object& owner, World& world, py::handle field, py::object&
 }
 
 template <class... Fs>
-py::object add_any(const py::object& owner, World& world, py::handle field) {
+py::object add_any(const py::object& owner, World& world, py::handle field,
+                   const std::variant<Fs...>*) {
   py::object result;
   if (!(add_if<Fs>(owner, world, field, result) || ...)) {
     throw py::type_error("World.add: expected a field (Gravity, Wind, Liquid, ...), got " +
@@ -192,8 +244,7 @@ py::object field_handle(const py::object& owner, World& world, std::size_t index
 }
 
 py::object add_field(const py::object& owner, World& world, py::handle field) {
-  return add_any<Gravity, Wind, NoiseWind, Helium, Fan, EdgeForce, Friction, Liquid, Drag, Lift,
-                 Attractor, MutualAttraction, CustomForce>(owner, world, field);
+  return add_any(owner, world, field, static_cast<const Field*>(nullptr));
 }
 
 void clear_fields(World& world) {
@@ -277,49 +328,13 @@ void bind_fields(py::module_& m) {
           },
           py::arg("x"), py::arg("y") = 0.0, py::arg("z") = 0.0, "The world's noise()");
 
-  auto gravity = field_class<Gravity>(m, "Gravity",
-                                      "A uniform force g on every body, or g * mass with "
-                                      "scale_by_mass (example 2.3). Defaults: g=(0, 0.1).");
-  parameter(gravity, "g", &Gravity::g);
-  parameter(gravity, "scale_by_mass", &Gravity::scale_by_mass);
+  // Every kind, from its description; then what some kinds add.
+  auto kinds = kind_classes(m, static_cast<const Field*>(nullptr));
+  m.def(
+      "_field_kinds", [] { return describe_kinds(static_cast<const Field*>(nullptr)); },
+      "The field kinds' descriptions: (class, name, parameter keys, in scene files).");
 
-  auto wind =
-      field_class<Wind>(m, "Wind", "A uniform force on every body. Default force (0.1, 0).");
-  parameter(wind, "force", &Wind::force);
-
-  auto noise_wind = field_class<NoiseWind>(m, "NoiseWind",
-                                           "Wind whose strength follows the world's noise() "
-                                           "over time.");
-  parameter(noise_wind, "strength", &NoiseWind::strength);
-  parameter(noise_wind, "rate", &NoiseWind::rate);
-  parameter(noise_wind, "offset", &NoiseWind::offset);
-
-  auto helium = field_class<Helium>(m, "Helium", "An upward force of lift on every body.");
-  parameter(helium, "lift", &Helium::lift);
-
-  auto fan = field_class<Fan>(m, "Fan", "Pushes bodies away from position, fading over reach.");
-  parameter(fan, "position", &Fan::position);
-  parameter(fan, "strength", &Fan::strength);
-  parameter(fan, "reach", &Fan::reach);
-
-  auto edge = field_class<EdgeForce>(m, "EdgeForce",
-                                     "Pushes bodies back from the canvas edges within margin.");
-  parameter(edge, "strength", &EdgeForce::strength);
-  parameter(edge, "margin", &EdgeForce::margin);
-
-  auto friction = field_class<Friction>(
-      m, "Friction", "Kinetic friction -mu * normal * v/|v| on bodies touching the surface edge.");
-  parameter(friction, "mu", &Friction::mu);
-  parameter(friction, "normal", &Friction::normal);
-  parameter(friction, "surface", &Friction::surface);
-  parameter(friction, "tolerance", &Friction::tolerance);
-  parameter(friction, "never_reverse", &Friction::never_reverse);
-
-  auto liquid =
-      field_class<Liquid>(m, "Liquid", "Drag (c * speed) * speed inside region (example 2.5).");
-  parameter(liquid, "region", &Liquid::region);
-  parameter(liquid, "c", &Liquid::c);
-  parameter(liquid, "never_reverse", &Liquid::never_reverse);
+  auto& liquid = std::get<FieldClass<Liquid>>(kinds);
   liquid.def(
       "contains", [](const FieldRef<Liquid>& r, Vec2 p) { return r.get().contains(p); },
       py::arg("position"));
@@ -330,37 +345,13 @@ void bind_fields(py::module_& m) {
       },
       py::arg("velocity"), py::arg("area") = 1.0);
 
-  auto drag = field_class<Drag>(m, "Drag", "Drag (c * speed) * speed everywhere.");
-  parameter(drag, "c", &Drag::c);
-  parameter(drag, "never_reverse", &Drag::never_reverse);
-
-  auto lift = field_class<Lift>(m, "Lift", "A force perpendicular to the velocity.");
-  parameter(lift, "coefficient", &Lift::coefficient);
-
-  auto attractor = field_class<Attractor>(m, "Attractor",
-                                          "A fixed mass attracting every body under law "
-                                          "(example 2.6).");
-  parameter(attractor, "position", &Attractor::position);
-  parameter(attractor, "mass", &Attractor::mass);
-  parameter(attractor, "law", &Attractor::law);
+  auto& attractor = std::get<FieldClass<Attractor>>(kinds);
   attractor.def(
       "attract",
       [](const FieldRef<Attractor>& r, Vec2 p, double mass) { return r.get().attract(p, mass); },
       py::arg("body_position"), py::arg("body_mass"));
 
-  auto mutual = field_class<MutualAttraction>(
-      m, "MutualAttraction", "Every body attracts every other (examples 2.8, 2.9).");
-  parameter(mutual, "law", &MutualAttraction::law);
-  parameter(mutual, "order", &MutualAttraction::order);
-  parameter(mutual, "central", &MutualAttraction::central);
-  parameter(mutual, "method", &MutualAttraction::method);
-  parameter(mutual, "theta", &MutualAttraction::theta);
-  parameter(mutual, "single_precision", &MutualAttraction::single_precision);
-  parameter(mutual, "threads", &MutualAttraction::threads);
-
-  auto custom = field_class<CustomForce>(
-      m, "CustomForce",
-      "Any force: force(context: ForceContext, index: int) -> Vec2 for each body.");
+  auto& custom = std::get<FieldClass<CustomForce>>(kinds);
   custom.def_property(
       "force", [](const FieldRef<CustomForce>& r) { return r.get().force; },
       [](const FieldRef<CustomForce>& r, const py::function& function) {

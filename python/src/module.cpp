@@ -77,10 +77,6 @@ PYBIND11_MODULE(_calder, m) {
       "Bodies with mass moving under forces by Newton's laws, in the book's vocabulary\n"
       "(Mover, apply_force, Attractor, Liquid), p5.js-compatible to the last bit.";
 
-  // The kernels behind World.step(n) and the n-body methods, as the calder command does.
-  calder::nbody::install();
-  calder::bulk::install();
-
   static py::exception<calder::Error> error(m, "Error", PyExc_ValueError);
   error.doc() = "A bad argument or a failed step; the message is calder's (a ValueError).";
   error_type_object = error;

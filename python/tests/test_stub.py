@@ -64,3 +64,27 @@ def test_the_package_reexports_the_module():
     for name in dir(_calder):
         if not name.startswith("_"):
             assert getattr(calder, name) is getattr(_calder, name)
+
+
+def test_every_field_class_declares_its_kinds_parameters():
+    # The field classes are made from calder's descriptions of the kinds
+    # (FieldKind<F>): the stub declares each parameter in the description's
+    # order (then what the bindings add by hand, CustomForce's force), takes
+    # each as a keyword, and its Field union holds every kind.
+    tree = stub_tree()
+    classes = {node.name: node for node in tree.body if isinstance(node, ast.ClassDef)}
+    kinds = _calder._field_kinds()
+    assert len(kinds) == len({cls for cls, *_ in kinds})
+    for cls, name, keys, _in_scene_files in kinds:
+        assert cls in classes, f"{cls} ({name}) is not in the stub"
+        node = classes[cls]
+        assert [b.id for b in node.bases if isinstance(b, ast.Name)] == ["_Field"], cls
+        attributes = [item.target.id for item in node.body
+                      if isinstance(item, ast.AnnAssign) and isinstance(item.target, ast.Name)]
+        assert attributes[:len(keys)] == list(keys), cls
+        init = next(item for item in node.body
+                    if isinstance(item, ast.FunctionDef) and item.name == "__init__")
+        assert [a.arg for a in init.args.kwonlyargs] == attributes + ["enabled"], cls
+    union = next(node.value for node in tree.body if isinstance(node, ast.Assign)
+                 and any(isinstance(t, ast.Name) and t.id == "Field" for t in node.targets))
+    assert [e.id for e in union.slice.elts] == [cls for cls, *_ in kinds]

@@ -132,8 +132,6 @@ bool step_batch(const StepBatch& batch, std::string* why_not) {
   return true;
 }
 
-void install() { set_step_batch_backend(step_batch); }
-
 std::string unsupported(const World& world) {
   if (world.integrator() != Integrator::semi_implicit_euler) {
     return "the kernels integrate with semi_implicit_euler only";

@@ -1,8 +1,9 @@
 // SPDX-License-Identifier: MIT
 // calder::bulk: the tile kernels (see plan.hpp), as templates over the
 // precision R and the arithmetic: kBook = true repeats the book's operations
-// in its order (World's plain loops, calder/forces.hpp), kBook = false is the
-// fast form of the same physics.
+// in its order (World's plain loops), kBook = false is the fast form of the
+// same physics. The laws themselves are the field kinds'
+// (calder/field_kinds/), run here over vectors of bodies (KernelLanes).
 //
 // Included by kernels_book.cpp (compiled with -ffp-contract=off: no fused
 // multiply-adds, so the book kernels give the plain loops' bits) and
@@ -14,9 +15,9 @@
 // ...) read from the chunk by that op only. The out-of-order core overlaps
 // consecutive vectors, so the steps cost arithmetic, not memory traffic, and
 // the live registers stay few (x, y, vx, vy, ax, ay and an op's temporaries)
-// whatever the target's register file: 16 with AVX2, 32 with AVX-512. An
-// earlier design kept 4 vectors of 11 quantities in registers through the
-// batch and spilled hundreds of them to the stack on AVX2. Conditions
+// whatever the target's register file: 16 with AVX2, 32 with AVX-512 (state
+// kept in registers through a whole batch would not fit AVX2's and spill to
+// the stack: lint.bulk_kernels_spills counts spills). Conditions
 // are computed for every lane and select results, and lanes that must not
 // change add exactly +0 or keep their old value. (A sum that is exactly zero is +0 in IEEE
 // round-to-nearest unless both terms are -0, so accelerations, which start at +0, are never -0 and
@@ -52,9 +53,9 @@
 #define CALDER_BULK_PASS CALDER_BULK_INLINE
 #endif
 // A pass's vector loop two vectors an iteration (each_vector): native
-// builds without AddressSanitizer. With ASan the unrolled loops took 3x as
-// long to compile (Clang, kernels_fast.cpp: 578 s against 174 s) and speed
-// is not their point; WebAssembly keeps one vector (V8: not measured).
+// builds without AddressSanitizer. Under ASan the unrolled loops cost several
+// times the compile time, and speed is not that build's point; WebAssembly
+// keeps one vector.
 #if defined(__wasm__) || defined(__SANITIZE_ADDRESS__)
 #define CALDER_BULK_UNROLL
 #elif defined(__has_feature)
@@ -239,13 +240,13 @@ template <class V>
 // below float's smallest normal number (|v| < 1.1e-19, whose drag or
 // friction no float holds: the AVX and SSE estimates read such inputs as 0
 // and give infinity). Elsewhere (float64, book) the correctly rounded vsqrt.
-// kLengthEstimate: whether float32 |v| comes from the estimate (x86); where
+// kRsqrtEstimate: whether float32 |v| comes from the estimate (x86); where
 // it does, kTwice asks for 2 |v|, the estimate's last multiplication by 1/2
 // left to the caller's constants.
 #if defined(__SSE__)
-constexpr bool kLengthEstimate = true;
+constexpr bool kRsqrtEstimate = true;
 #else
-constexpr bool kLengthEstimate = false;
+constexpr bool kRsqrtEstimate = false;
 #endif
 template <class R, bool kBook, class V, bool kTwice = false>
 [[gnu::always_inline]] inline V vlength(V sq) {
@@ -268,7 +269,7 @@ template <class R, bool kBook, class V, bool kTwice = false>
     return sq >= std::numeric_limits<R>::min() ? length : V{};
   }
 #endif
-  static_assert(!kTwice || (kLengthEstimate && !kBook && sizeof(R) == 4));
+  static_assert(!kTwice || (kRsqrtEstimate && !kBook && sizeof(R) == 4));
   return vsqrt(sq);
 }
 
@@ -298,17 +299,16 @@ template <class M, class V>
 // 34(1), 1990; Muller et al., Handbook of Floating-Point Arithmetic, on
 // division with an FMA): if y is RN(1 / m) and q is within one ulp of x / m,
 // then x - m q is exact and q + (x - m q) y rounds to RN(x / m). q0 = RN(x y)
-// is within 1.5 ulps only; the first correction brings it within one. The
-// divider takes 2 cycles a lane in float64; the five fused instructions and
-// Numerators' three take about one (the book's rain: 1.6x faster with AVX-512,
-// 1.1x with AVX2; docs/PERFORMANCE.md). The theorem needs no underflow or overflow on the
-// way: masses in [2^-200, 2^200] (the tile's, checked when it is loaded) and
-// numerators 0 or in [2^-700, 2^700] (checked after the batch, Numerators: a
-// batch with any other is run again with the divides) keep every intermediate
-// normal. Zeros keep their sign: the corrections are written q - (m q - x) y,
-// whose residual is +0 for x = +-0 (q + (x - m q) y would turn -0 into +0).
-// tests/test_movers.cpp (BookQuotients...) checks the bits against the divide
-// on quotients that round near a midpoint.
+// is within 1.5 ulps only; the first correction brings it within one. Why:
+// the divider, not the FMA units, bounds the book arithmetic in float64, and
+// the fused instructions and Numerators' checks issue beside other work
+// (docs/PERFORMANCE.md has the rain scene's rates). The theorem needs no
+// underflow or overflow on the way: masses in [2^-200, 2^200] (the tile's, checked when it is
+// loaded) and numerators 0 or in [2^-700, 2^700] (checked after the batch, Numerators: a batch with
+// any other is run again with the divides) keep every intermediate normal. Zeros keep their sign:
+// the corrections are written q - (m q - x) y, whose residual is +0 for x = +-0 (q + (x - m q) y
+// would turn -0 into +0). tests/test_movers.cpp (BookQuotients...) checks the bits against the
+// divide on quotients that round near a midpoint.
 #if defined(__FMA__) && defined(__AVX__)
 inline constexpr bool kFusedQuotients = true;
 #else
@@ -349,246 +349,25 @@ template <class R, class V>
   return x / b.m();
 }
 
-// acceleration += force / mass (book) or force * (1 / mass) (fast), in the
-// lanes where apply is set.
-template <class R, bool kBook, class V, class M>
-[[gnu::always_inline]] inline void add_force(Block<R>& b, M apply, V fx, V fy) {
-  V ax, ay;
-  if constexpr (kBook) {
-    ax = b.ax + quotient_by_mass(b, fx);
-    ay = b.ay + quotient_by_mass(b, fy);
-  } else {
-    ax = b.ax + fx * b.inv_m();
-    ay = b.ay + fy * b.inv_m();
-  }
-  b.ax = apply ? ax : b.ax;
-  b.ay = apply ? ay : b.ay;
-}
-
-// Vec2::limit(max) on (fx, fy): if |f|^2 > max^2, f / |f| * max.
-template <class V>
-[[gnu::always_inline]] inline void limit(V& fx, V& fy, V max) {
-  const V m_sq = fx * fx + fy * fy;
-  const V len = vsqrt(m_sq);
-  const auto over = m_sq > max * max;
-  fx = over ? fx / len * max : fx;
-  fy = over ? fy / len * max : fy;
-}
-
-template <class R, bool kBook>
-[[gnu::always_inline]] inline void op_uniform(Block<R>& b, R fx, R fy) {
-  using V = typename Simd<R>::V;
+// The kernels' lane policy (calder/field_kinds/lanes.hpp): a vector of R in
+// registers, the book's arithmetic (kBook) or the fast one. The field kinds'
+// laws (calder/field_kinds/) run over Blocks through it.
+template <class Real, bool kBook>
+struct KernelLanes {
+  using R = Real;
+  using L = typename Simd<R>::V;
   using M = typename Simd<R>::M;
-  { add_force<R, kBook>(b, ~M{}, splat<V>(fx), splat<V>(fy)); }
-}
-
-template <class R, bool kBook>
-[[gnu::always_inline]] inline void op_gravity_scaled(Block<R>& b, R gx, R gy) {
-  {
-    if constexpr (kBook) {
-      // p5.Vector.mult(gravity, mass), then applyForce divides by mass.
-      // (gx = 0: the quotient is +-0, and adding it leaves an acceleration,
-      // never -0, as it is; the rain's gravity is (0, g).)
-      if (gx != R(0)) b.ax += quotient_by_mass(b, gx * b.m());
-      b.ay += quotient_by_mass(b, gy * b.m());
-    } else {
-      b.ax += gx;
-      b.ay += gy;
-    }
+  static constexpr bool book = kBook;
+  static constexpr bool kLengthEstimate = kRsqrtEstimate;
+  [[gnu::always_inline]] static L sqrt(L x) { return vsqrt(x); }
+  template <bool kTwice = false>
+  [[gnu::always_inline]] static L length(L sq) {
+    return vlength<R, kBook, L, kTwice>(sq);
   }
-}
-
-// The book's force against the motion (calder::drag, calder::friction): -v
-// set to `magnitude` (normalize multiplies by 1 / |v| unless |v| = 0), limited
-// so that it never reverses the motion within dt when asked, added where apply
-// is set.
-template <class R, bool kNeverReverse, class V, class M>
-[[gnu::always_inline]] inline void add_against_motion(Block<R>& b, M apply, V vx, V vy, V speed,
-                                                      V magnitude, R dt) {
-  const V inv = R(1) / (speed != R(0) ? speed : splat<V>(R(1)));
-  V fx = -vx * inv * magnitude;
-  V fy = -vy * inv * magnitude;
-  if constexpr (kNeverReverse) limit(fx, fy, b.m() * speed / dt);
-  add_force<R, true>(b, apply, fx, fy);
-}
-
-// Quadratic drag -c |v| v area, where strictly inside the op's region
-// (everywhere: on every body, as the plain loops' Drag).
-template <class R, bool kBook, bool kNeverReverse, bool kEverywhere>
-[[gnu::always_inline]] inline void op_drag(Block<R>& b, const Params<R>& p, R dt) {
-  using V = typename Simd<R>::V;
-  {
-    const V vx = b.vx;
-    const V vy = b.vy;
-    using M = typename Simd<R>::M;
-    const M inside = kEverywhere
-                         ? ~M{}
-                         : M((b.x > p.x_min) & (b.x < p.x_max) & (b.y > p.y_min) & (b.y < p.y_max));
-    if constexpr (kBook) {
-      // calder::drag: magnitude c * speed * speed * area; -v set to it
-      // (normalize multiplies by 1 / |v| unless |v| = 0).
-      const V speed = vlength<R, kBook>(vx * vx + vy * vy);
-      add_against_motion<R, kNeverReverse>(b, inside, vx, vy, speed, p.c * speed * speed * b.area(),
-                                           dt);
-    } else {
-      // a = -k v with k = c area |v| / m; never reversing: k dt <= 1. float32:
-      // (c / 2) (2 |v|), a multiplication fewer.
-      constexpr bool kTwice = kLengthEstimate && sizeof(R) == 4;
-      const V speed = vlength<R, kBook, V, kTwice>(vx * vx + vy * vy);
-      V k = (kTwice ? p.c * R(0.5) : p.c) * b.area() * speed * b.inv_m();
-      if constexpr (kNeverReverse) k = k < R(1) / dt ? k : splat<V>(R(1) / dt);
-      b.ax = inside ? b.ax - k * vx : b.ax;
-      b.ay = inside ? b.ay - k * vy : b.ay;
-    }
-  }
-}
-
-// Kinetic friction -mu N v-hat on bodies touching the op's surface.
-template <class R, bool kBook, bool kNeverReverse>
-[[gnu::always_inline]] inline void op_friction(Block<R>& b, const Params<R>& p, R width, R height,
-                                               R dt) {
-  using V = typename Simd<R>::V;
-  {
-    const V vx = b.vx;
-    const V vy = b.vy;
-    const V r = b.r();
-    // calder::touches_edge, term by term.
-    typename Simd<R>::M touching{};
-    switch (p.surface) {
-      case Edge::left:
-        touching = b.x < r + p.tolerance;
-        break;
-      case Edge::right:
-        touching = b.x > width - r - p.tolerance;
-        break;
-      case Edge::top:
-        touching = b.y < r + p.tolerance;
-        break;
-      case Edge::bottom:
-        touching = b.y > height - r - p.tolerance;
-        break;
-    }
-    const V own = b.mu();
-    const V mu = own != own ? splat<V>(p.c) : own;  // NaN: no coefficient of its own
-    const V speed = vlength<R, kBook>(vx * vx + vy * vy);
-    if constexpr (kBook) {
-      add_against_motion<R, kNeverReverse>(b, touching, vx, vy, speed, mu * p.normal, dt);
-    } else {
-      const V moving = speed != R(0) ? speed : splat<V>(R(1));
-      V k = speed != R(0) ? mu * p.normal * b.inv_m() / moving : splat<V>(R(0));
-      if constexpr (kNeverReverse) k = k < R(1) / dt ? k : splat<V>(R(1) / dt);
-      b.ax = touching ? b.ax - k * vx : b.ax;
-      b.ay = touching ? b.ay - k * vy : b.ay;
-    }
-  }
-}
-
-// A fixed attractor at (px, py) of mass M: calder::attraction(source =
-// attractor, target = body) for the inverse-square laws.
-template <class R, bool kBook, DistanceClamp kLaw, bool kSoftened>
-[[gnu::always_inline]] inline void op_attractor(Block<R>& b, const Params<R>& p) {
-  using V = typename Simd<R>::V;
-  using M = typename Simd<R>::M;
-  {
-    const V rx = p.px - b.x;
-    const V ry = p.py - b.y;
-    const V d_sq = rx * rx + ry * ry;
-    const V d = vsqrt(d_sq);
-    if constexpr (kBook) {
-      const V m = b.m();
-      // strength_of: G * M * m, or G * (M * m), over the denominator.
-      const V numerator = p.masses_first ? p.G * (p.mass * m) : p.G * p.mass * m;
-      V strength;
-      M apply = ~M{};
-      if constexpr (kLaw == DistanceClamp::distance) {
-        V dc = d < p.hi ? d : splat<V>(p.hi);  // constrain(d, lo, hi) = max(min(d, hi), lo)
-        dc = dc > p.lo ? dc : splat<V>(p.lo);
-        strength = numerator / (dc * dc);
-      } else if constexpr (kLaw == DistanceClamp::squared_distance) {
-        V q = d_sq < p.hi ? d_sq : splat<V>(p.hi);
-        q = q > p.lo ? q : splat<V>(p.lo);
-        strength = numerator / q;
-      } else {
-        apply = d_sq != R(0);  // coincident: no direction, no force
-        if constexpr (!kSoftened) {
-          strength = numerator / d_sq;
-        } else {
-          const V s_sq = d_sq + p.eps * p.eps;
-          strength = numerator / (s_sq * vsqrt(s_sq)) * d;
-        }
-      }
-      // set_mag(strength): normalize (times 1 / |r| unless 0), then times strength.
-      const V inv = R(1) / (d != R(0) ? d : splat<V>(R(1)));
-      add_force<R, true>(b, apply, rx * inv * strength, ry * inv * strength);
-    } else {
-      // acceleration = G M w r, with w = 1 / (d_c^2 d) (clamped) or 1 / s^3 (Plummer).
-      V denominator;
-      if constexpr (kLaw == DistanceClamp::distance) {
-        V dc = d < p.hi ? d : splat<V>(p.hi);
-        dc = dc > p.lo ? dc : splat<V>(p.lo);
-        denominator = dc * dc * d;
-      } else if constexpr (kLaw == DistanceClamp::squared_distance) {
-        V q = d_sq < p.hi ? d_sq : splat<V>(p.hi);
-        q = q > p.lo ? q : splat<V>(p.lo);
-        denominator = q * d;
-      } else {
-        const V s_sq = d_sq + p.eps * p.eps;
-        denominator = s_sq * vsqrt(s_sq);
-      }
-      const auto zero = d_sq == R(0);
-      const V w = zero ? splat<V>(R(0)) : R(1) / (zero ? splat<V>(R(1)) : denominator);
-      b.ax += p.gm * w * rx;
-      b.ay += p.gm * w * ry;
-    }
-  }
-}
-
-// calder::edge_force: strength * (margin - d) / margin within margin of each edge.
-template <class R, bool kBook>
-[[gnu::always_inline]] inline void op_edge_force(Block<R>& b, const Params<R>& p, R width,
-                                                 R height) {
-  using V = typename Simd<R>::V;
-  using M = typename Simd<R>::M;
-  const auto push = [&](V d) {
-    const V inward = p.c * (p.margin - d) / p.margin;
-    return d < p.margin ? inward : splat<V>(R(0));
-  };
-  {
-    const V x = b.x;
-    const V y = b.y;
-    add_force<R, kBook>(b, ~M{}, push(x) - push(width - x), push(y) - push(height - y));
-  }
-}
-
-// calder::fan: away from (px, py), strength * (1 - d / reach) for 0 < d < reach.
-template <class R, bool kBook>
-[[gnu::always_inline]] inline void op_fan(Block<R>& b, const Params<R>& p) {
-  using V = typename Simd<R>::V;
-  {
-    const V awx = b.x - p.px;
-    const V awy = b.y - p.py;
-    const V d = vsqrt(awx * awx + awy * awy);
-    const auto apply = (d != R(0)) & (d < p.reach);
-    const V magnitude = p.c * (R(1) - d / p.reach);
-    const V inv = R(1) / (d != R(0) ? d : splat<V>(R(1)));
-    add_force<R, kBook>(b, apply, awx * inv * magnitude, awy * inv * magnitude);
-  }
-}
-
-// calder::lift: (vy, -vx) set to coefficient * |v|^2.
-template <class R, bool kBook>
-[[gnu::always_inline]] inline void op_lift(Block<R>& b, const Params<R>& p) {
-  using V = typename Simd<R>::V;
-  using M = typename Simd<R>::M;
-  {
-    const V vx = b.vx;
-    const V vy = b.vy;
-    const V magnitude = p.c * (vx * vx + vy * vy);
-    const V len = vsqrt(vy * vy + vx * vx);
-    const V inv = R(1) / (len != R(0) ? len : splat<V>(R(1)));
-    add_force<R, kBook>(b, ~M{}, vy * inv * magnitude, -vx * inv * magnitude);
-  }
-}
+  [[gnu::always_inline]] static L splat(R x) { return detail::splat<L>(x); }
+  [[gnu::always_inline]] static M all() { return ~M{}; }
+  [[gnu::always_inline]] static L quotient(Block<R>& b, L x) { return quotient_by_mass(b, x); }
+};
 
 // The bounce's parameters, converted once. An edge that doesn't bounce gets
 // an infinite wall that no coordinate crosses, so that the bounce needs
@@ -703,82 +482,37 @@ template <class R>
 }
 
 // Hands `each` the force of one op: a function of a Block that adds it to
-// the block's accelerations.
+// the block's accelerations (its kind's law, FieldKind<F>::run).
 template <class R, bool kBook, class Each>
-[[gnu::always_inline]] inline void apply_op(Each&& each, const Op& op, const Params<R>& p, int step,
-                                            R width, R height, R dt) {
-  switch (op.kind) {
-    case OpKind::uniform:
-      if (op.per_step != nullptr) {
-        const auto si = static_cast<std::size_t>(step);
-        const R fx = R(op.per_step[2 * si]);
-        const R fy = R(op.per_step[2 * si + 1]);
-        return each([=](Block<R>& b) CALDER_BULK_INLINE { op_uniform<R, kBook>(b, fx, fy); });
-      }
-      return each([=](Block<R>& b) CALDER_BULK_INLINE { op_uniform<R, kBook>(b, p.fx, p.fy); });
-    case OpKind::gravity_scaled:
-      return each([=](Block<R>& b)
-                      CALDER_BULK_INLINE { op_gravity_scaled<R, kBook>(b, p.fx, p.fy); });
-    case OpKind::drag:
-      if (p.never_reverse) {
-        if (p.everywhere)
-          return each([=](Block<R>& b)
-                          CALDER_BULK_INLINE { op_drag<R, kBook, true, true>(b, p, dt); });
-        return each([=](Block<R>& b)
-                        CALDER_BULK_INLINE { op_drag<R, kBook, true, false>(b, p, dt); });
-      }
-      if (p.everywhere)
-        return each([=](Block<R>& b)
-                        CALDER_BULK_INLINE { op_drag<R, kBook, false, true>(b, p, dt); });
-      return each([=](Block<R>& b)
-                      CALDER_BULK_INLINE { op_drag<R, kBook, false, false>(b, p, dt); });
-    case OpKind::friction:
-      if (p.never_reverse)
-        return each([=](Block<R>& b) CALDER_BULK_INLINE {
-          op_friction<R, kBook, true>(b, p, width, height, dt);
-        });
-      return each([=](Block<R>& b) CALDER_BULK_INLINE {
-        op_friction<R, kBook, false>(b, p, width, height, dt);
-      });
-    case OpKind::attractor:
-      switch (p.law) {
-        case DistanceClamp::distance:
-          return each([=](Block<R>& b) CALDER_BULK_INLINE {
-            op_attractor<R, kBook, DistanceClamp::distance, false>(b, p);
-          });
-        case DistanceClamp::squared_distance:
-          return each([=](Block<R>& b) CALDER_BULK_INLINE {
-            op_attractor<R, kBook, DistanceClamp::squared_distance, false>(b, p);
-          });
-        case DistanceClamp::none:
-          if (p.eps == R(0))
-            return each([=](Block<R>& b) CALDER_BULK_INLINE {
-              op_attractor<R, kBook, DistanceClamp::none, false>(b, p);
-            });
-          return each([=](Block<R>& b) CALDER_BULK_INLINE {
-            op_attractor<R, kBook, DistanceClamp::none, true>(b, p);
-          });
-      }
-      return;
-    case OpKind::edge_force:
-      return each([=](Block<R>& b)
-                      CALDER_BULK_INLINE { op_edge_force<R, kBook>(b, p, width, height); });
-    case OpKind::fan:
-      return each([=](Block<R>& b) CALDER_BULK_INLINE { op_fan<R, kBook>(b, p); });
-    case OpKind::lift:
-      return each([=](Block<R>& b) CALDER_BULK_INLINE { op_lift<R, kBook>(b, p); });
-  }
+[[gnu::always_inline]] inline void apply_op(Each&& each, const Op& op, int step, R width, R height,
+                                            R dt) {
+  const lanes::Frame<R> frame{width, height, dt, step};
+  std::visit(
+      [&](const auto& kind_law) {
+        if constexpr (requires { kind_law.law; }) {
+          using Kind = typename std::decay_t<decltype(kind_law)>::Kind;
+          Kind::template run<KernelLanes<R, kBook>>(each, kind_law.law, frame);
+        }
+      },
+      op.template law<R>());
+}
+
+// The op's Gravity scaled by mass, or null.
+template <class R>
+[[gnu::always_inline]] inline const FieldKind<Gravity>::Law<R>* scaled_gravity(const Op& op) {
+  const auto* g = std::get_if<KindLaw<Gravity, R>>(&op.template law<R>());
+  return g != nullptr && g->law.scaled ? &g->law : nullptr;
 }
 
 // The fast kernels fold the ops whose acceleration is the same for every body
 // (gravity scaled by mass) into one constant: true, with it in (gx, gy), for
 // such an op.
 template <class R, bool kBook>
-[[gnu::always_inline]] inline bool constant_op(const Op& op, const Params<R>& p, R& gx, R& gy) {
+[[gnu::always_inline]] inline bool constant_op(const Op& op, R& gx, R& gy) {
   if constexpr (kBook) return false;
-  if (op.kind == OpKind::gravity_scaled) {
-    gx = p.fx;
-    gy = p.fy;
+  if (const auto* g = scaled_gravity<R>(op)) {
+    gx = g->gx;
+    gy = g->gy;
     return true;
   }
   return false;
@@ -804,22 +538,20 @@ template <class R, class Last>
 // last op's pass (its quotients beside the last op's), not in a pass of its
 // own: WebAssembly, because V8's code for a pass costs more per vector than
 // GCC's, in loads, stores and loop overhead; native, because its
-// multiplications overlap the drag's square root and division (book rain,
-// one thread: AVX2 1.02x, AVX-512 1.07x, with kUpdatePass). Same operations
-// in the same order.
+// multiplications overlap the drag's square root and division. Same
+// operations in the same order.
 constexpr bool kFuseGravityTarget = true;
 
 // Native book kernels run the update (velocity, position, bounce) in a pass
 // of its own after the last op's, not in it: the drag's chain (square root,
 // division, quotients by the mass) and the update's after it make the
 // longest chain of a step, and in one loop the operations waiting on it fill
-// the out-of-order window (book rain at 10^5, one thread: AVX2 3.06e8 ->
-// 3.57e8 body-steps/s, AVX-512 4.54e8 -> 4.81e8). A pass of its own for
-// the drag's square root and division too was slower (3.0e8 on AVX2): alone,
-// they wait on the divider instead of overlapping the rest. WebAssembly
-// keeps one pass (V8's passes cost more, above).
-// The fast float32 kernels too with AVX2 (1.06x at 10^5), not float64 (0.85x:
-// its chain is short, and the pass adds loads and stores) nor AVX-512 (1x).
+// the out-of-order window. The drag's square root and division stay with the
+// other forces: alone in a pass they would wait on the divider instead of
+// overlapping the rest. WebAssembly keeps one pass (V8's passes cost more,
+// above). The fast float32 kernels with AVX2 too; not float64, whose chain
+// is short, so that the pass's loads and stores cost more than they save, nor
+// AVX-512, where it makes no difference.
 #if defined(__wasm__)
 template <class R, bool kBook>
 constexpr bool kUpdatePass = false;
@@ -845,7 +577,7 @@ Passes<R> plan_passes(const Plan& plan, std::vector<std::size_t>& passes) {
   passes.clear();
   for (std::size_t k = 0; k < plan.ops.size(); ++k) {
     R gx, gy;
-    if (constant_op<R, kBook>(plan.ops[k], plan.ops[k].template params<R>(), gx, gy)) {
+    if (constant_op<R, kBook>(plan.ops[k], gx, gy)) {
       out.cx += gx;
       out.cy += gy;
     } else {
@@ -855,9 +587,10 @@ Passes<R> plan_passes(const Plan& plan, std::vector<std::size_t>& passes) {
   out.own = passes.size();
   if (kBook && kFuseGravityTarget && passes.size() >= 2) {
     const Op& op = plan.ops[passes[passes.size() - 2]];
-    out.fused = op.kind == OpKind::gravity_scaled;
-    out.gx = out.fused ? op.template params<R>().fx : R(0);
-    out.gy = out.fused ? op.template params<R>().fy : R(0);
+    const auto* g = scaled_gravity<R>(op);
+    out.fused = g != nullptr;
+    out.gx = out.fused ? g->gx : R(0);
+    out.gy = out.fused ? g->gy : R(0);
     out.own -= out.fused ? 1 : 0;
   }
   return out;
@@ -870,9 +603,8 @@ Passes<R> plan_passes(const Plan& plan, std::vector<std::size_t>& passes) {
 template <class R, class FirstLoad, class Body>
 [[gnu::always_inline]] inline void each_vector(Chunk<R>& chunk, std::size_t vectors, bool first,
                                                FirstLoad first_load, Body body) {
-  // Two vectors an iteration (CALDER_BULK_UNROLL): their chains side by side
-  // (AVX2, at 10^5: book 1.02x, float64 1.03x, float32 1.08x; SSE2 book
-  // 1.08x; AVX-512 1x).
+  // Two vectors an iteration (CALDER_BULK_UNROLL): their chains side by side,
+  // which the narrower vectors (SSE2, AVX2) need to keep the core busy.
   Numerators<R> seen = chunk.numerators;  // in registers through the loop
   if (first) {
     CALDER_BULK_UNROLL
@@ -946,7 +678,7 @@ template <class R, bool kBook, class FirstLoad, class Before, class Force, class
 // so the first pass of a later step doesn't read them; the two kinds of step
 // are two copies of the loops, so that no vector tests which it is. (One pass
 // for every op and the update together would store least, but then every
-// vector goes through the ops' dispatch: slower on AVX2, measured.)
+// vector goes through the ops' dispatch, which costs more than the stores.)
 template <class R, bool kBook, bool kFirst>
 void advance_step(const Plan& plan, Chunk<R>& chunk, std::size_t vectors,
                   const std::vector<std::size_t>& passes, const Passes<R>& how, int step) {
@@ -984,8 +716,7 @@ void advance_step(const Plan& plan, Chunk<R>& chunk, std::size_t vectors,
         store_accelerations(to, b);
       });
     };
-    apply_op<R, kBook>(each, plan.ops[k], plan.ops[k].template params<R>(), step, width, height,
-                       dt);
+    apply_op<R, kBook>(each, plan.ops[k], step, width, height, dt);
   }
   // The last pass: the fused gravity (`before`), the last op, the update, the boundary.
   const bool alone = how.own <= 1;
@@ -995,15 +726,14 @@ void advance_step(const Plan& plan, Chunk<R>& chunk, std::size_t vectors,
     };
     if (passes.empty()) return each([](Block<R>&) CALDER_BULK_INLINE {});
     const std::size_t k = passes.back();
-    apply_op<R, kBook>(each, plan.ops[k], plan.ops[k].template params<R>(), step, width, height,
-                       dt);
+    apply_op<R, kBook>(each, plan.ops[k], step, width, height, dt);
   };
   with_update(
       [&](auto update_one) CALDER_BULK_INLINE {
         if constexpr (kBook && kFuseGravityTarget) {
           if (how.fused) {
             return last(update_one, [=](Block<R>& b) CALDER_BULK_INLINE {
-              op_gravity_scaled<R, kBook>(b, how.gx, how.gy);
+              FieldKind<Gravity>::scaled<KernelLanes<R, kBook>>(b, how.gx, how.gy);
             });
           }
         }

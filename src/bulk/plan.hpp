@@ -1,13 +1,15 @@
 // SPDX-License-Identifier: MIT
-// calder::bulk internals: a batch's fields compiled into a list of passes
-// (plan.cpp), and the kernels that run them over one tile (kernels_*.cpp,
-// compiled per instruction set, chosen at run time by dispatch.cpp).
+// calder::bulk internals: a batch's fields compiled into a list of passes,
+// one per enabled field, each the field kind's law (plan.cpp), and the
+// kernels that run them over one tile (kernels_*.cpp, compiled per
+// instruction set, chosen at run time by dispatch.cpp).
 #pragma once
 
 #include <cstddef>
 #include <cstdint>
 #include <deque>
 #include <string>
+#include <variant>
 #include <vector>
 
 #include "calder/fields.hpp"
@@ -16,64 +18,46 @@
 
 namespace calder::bulk::detail {
 
-enum class OpKind : std::uint8_t {
-  uniform,         // the same force on every body: Wind, Helium, Gravity, NoiseWind
-  gravity_scaled,  // g * mass
-  drag,            // quadratic drag, everywhere (Drag) or strictly inside a region (Liquid)
-  friction,        // kinetic friction on bodies touching a canvas edge
-  attractor,       // a fixed attractor, inverse-square law
-  edge_force,      // pushes back from the canvas edges
-  fan,             // blows away from a point, linear falloff
-  lift,            // perpendicular to the velocity
+// A field's law in the precision R of a kernel (FieldKind<F>::Law<R>, its
+// parameters converted once per batch), for the kinds that have one; an
+// empty struct for the others, which compile() never makes.
+template <class F, class R>
+struct KindLaw {};
+template <class F, class R>
+requires HasLaw<F>
+struct KindLaw<F, R> {
+  using Kind = FieldKind<F>;
+  typename Kind::template Law<R> law;
 };
 
-// An op's parameters in the precision R of a kernel (each field kind's
-// op_of in plan.cpp writes them, once for each precision). Parameters not
-// used by a kind keep their defaults.
+template <class R, class Fields>
+struct LawsOf;
+template <class R, class... Kinds>
+struct LawsOf<R, std::variant<Kinds...>> {
+  using type = std::variant<KindLaw<Kinds, R>...>;
+};
+// Any kind's law in precision R.
 template <class R>
-struct Params {
-  R fx{}, fy{};     // uniform: the force; gravity_scaled: g
-  R c{};            // drag: c; friction: mu; edge_force, fan: strength; lift: coefficient
-  R normal = R(1);  // friction
-  // drag: strictly inside (x_min, x_max) x (y_min, y_max); everywhere: no
-  // region (Drag), the bounds infinite
-  R x_min{}, x_max{}, y_min{}, y_max{};
-  bool everywhere = false;
-  bool never_reverse = false;   // drag, friction
-  Edge surface = Edge::bottom;  // friction
-  R tolerance = R(1);           // friction
-  R px{}, py{};                 // attractor, fan: position
-  // attractor: the law, G and the attractor's mass M, G * M, the clamp
-  // bounds, the softening (eps); the book's two groupings of G M m
-  DistanceClamp law = DistanceClamp::distance;
-  bool masses_first = false;
-  R G = R(1), mass{}, gm{}, lo{}, hi{}, eps{};
-  R margin{};  // edge_force
-  R reach{};   // fan
-};
+using AnyLaw = typename LawsOf<R, Field>::type;
 
-// One pass over a tile.
+// One pass over a tile: an enabled field's law, in both precisions.
 struct Op {
-  OpKind kind = OpKind::uniform;
-  // uniform: when not null, the force of each step of the batch (x, y pairs):
-  // NoiseWind changes with time.
-  const double* per_step = nullptr;
-  Params<double> p64;
-  Params<float> p32;
+  AnyLaw<double> law64;
+  AnyLaw<float> law32;
 
   template <class R>
-  [[nodiscard]] const Params<R>& params() const {
+  [[nodiscard]] const AnyLaw<R>& law() const {
     if constexpr (sizeof(R) == sizeof(double)) {
-      return p64;
+      return law64;
     } else {
-      return p32;
+      return law32;
     }
   }
 };
 
 struct Plan {
   std::vector<Op> ops;
-  std::vector<double> per_step;  // storage behind Op::per_step
+  std::vector<double> per_step;  // storage behind the noise winds' Law::per_step
   Boundary boundary{};
   double width = 0.0;
   double height = 0.0;

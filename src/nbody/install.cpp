@@ -1,10 +1,15 @@
 // SPDX-License-Identifier: MIT
 // calder::nbody and the World: the kernels' options for a core attraction
-// law (options_for), and install(), the fast methods of MutualAttraction
-// (NBodyMethod::direct, NBodyMethod::barnes_hut) through the core's hook
-// (calder/fields.hpp, set_mutual_attraction_backend).
+// law (options_for), and the fast methods of MutualAttraction
+// (NBodyMethod::direct, NBodyMethod::barnes_hut) registered as the process
+// default of calder/backends.hpp while the program starts, so that linking
+// calder::nbody is all a world needs. CMake's calder::nbody and
+// calder-nbody.pc link with --undefined=calder_nbody_linked, which keeps this
+// object (and so its initialiser) in a program that names nothing else of
+// calder::nbody.
 #include <span>
 
+#include "calder/backends.hpp"
 #include "calder/error.hpp"
 #include "calder/fields.hpp"
 #include "calder/nbody.hpp"
@@ -51,6 +56,19 @@ void mutual_attraction(const MutualAttraction& field, const FieldContext& contex
   }
 }
 
-void install() { set_mutual_attraction_backend(mutual_attraction); }
+namespace {
+
+const bool registered = [] {
+  set_mutual_attraction_backend(mutual_attraction);
+  return true;
+}();
+
+}  // namespace
 
 }  // namespace calder::nbody
+
+// The symbol the link option names (its value is not used).
+extern "C" {
+extern const char calder_nbody_linked;
+const char calder_nbody_linked = 1;
+}

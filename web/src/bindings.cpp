@@ -388,8 +388,6 @@ val kernel_names() {
 }
 
 EMSCRIPTEN_BINDINGS(calder_web) {
-  calder::nbody::install();  // scenes may ask for method = "direct" or "barnes_hut"
-  calder::bulk::install();   // large worlds step through the tile kernels, as `calder run`
   emscripten::function("scenes", &scene_list);
   emscripten::function("kernels", &kernel_names);
   emscripten::class_<WebSimulation>("Simulation")
