@@ -21,8 +21,6 @@
 #include "summary.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
-  static const bool installed = (calder::nbody::install(), true);
-  (void)installed;
   const std::string_view text(reinterpret_cast<const char*>(data), size);
   try {
     calder::app::PreparedInput input;
