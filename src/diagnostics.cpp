@@ -2,6 +2,9 @@
 #include "calder/diagnostics.hpp"
 
 #include <algorithm>
+#include <array>
+#include <cinttypes>
+#include <cstdio>
 #include <cmath>
 #include <cstring>
 #include <variant>
@@ -195,6 +198,12 @@ std::uint64_t state_hash(const World& world) {
     }
   }
   return h;
+}
+
+std::string state_hash_text(const World& world) {
+  std::array<char, 17> text{};
+  std::snprintf(text.data(), text.size(), "%016" PRIx64, state_hash(world));
+  return text.data();
 }
 
 }  // namespace calder

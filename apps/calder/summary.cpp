@@ -26,12 +26,6 @@ void line(std::ostream& out, const char* label, const std::string& value) {
   out << text << value << '\n';
 }
 
-std::string hex16(std::uint64_t value) {
-  std::array<char, 17> text{};
-  std::snprintf(text.data(), text.size(), "%016" PRIx64, value);
-  return text.data();
-}
-
 std::string vector_text(Vec2 v) {
   std::string text = "(";
   text += format_number(v.x);
@@ -104,7 +98,7 @@ void print_summary(std::ostream& out, const Simulation& simulation, std::uint32_
   }
   line(out, "momentum", vector_text(momentum));
   line(out, "angular momentum", format_number(angular));
-  line(out, "state hash", hex16(state_hash(world)));
+  line(out, "state hash", state_hash_text(world));
 }
 
 }  // namespace calder::app

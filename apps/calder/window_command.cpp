@@ -69,12 +69,6 @@ bool env_set(const char* name) {
   return value != nullptr && *value != '\0';
 }
 
-std::string hex16(std::uint64_t value) {
-  std::array<char, 17> text{};
-  std::snprintf(text.data(), text.size(), "%016" PRIx64, value);
-  return text.data();
-}
-
 std::string timestamp() {
   const std::time_t now = std::time(nullptr);
   std::tm local{};
@@ -556,7 +550,7 @@ void print_state(std::ostream& out, const Simulation& simulation) {
     out << "body " << i << ' ' << format_number(p.x) << ' ' << format_number(p.y) << " radius "
         << format_number(world.radius(id)) << '\n';
   }
-  out << "state_hash " << hex16(state_hash(world)) << '\n';
+  out << "state_hash " << state_hash_text(world) << '\n';
 }
 
 CLI::App* add_window_command(CLI::App& app, WindowOptions& options) {

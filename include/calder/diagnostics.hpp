@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <string>
 
 #include "calder/forces.hpp"
 #include "calder/vec2.hpp"
@@ -58,5 +59,9 @@ Vec2 center_of_mass(const World& world);
 // radii, bit for bit. Same state, same hash; any changed bit changes it
 // (with overwhelming probability).
 std::uint64_t state_hash(const World& world);
+
+// state_hash as the command, the Python module and the page print it: 16
+// lowercase hexadecimal digits.
+std::string state_hash_text(const World& world);
 
 }  // namespace calder

@@ -102,12 +102,6 @@ std::vector<FrameRange> ranges_from(const val& list) {
   return ranges;
 }
 
-std::string hex16(std::uint64_t value) {
-  std::array<char, 17> text{};
-  std::snprintf(text.data(), text.size(), "%016" PRIx64, value);
-  return text.data();
-}
-
 val color_of(const Color& c) {
   val out = val::array();
   out.call<void>("push", c.r);
@@ -157,7 +151,7 @@ class WebSimulation {
   [[nodiscard]] double frames() const { return static_cast<double>(simulation_.scene().frames); }
   [[nodiscard]] std::size_t body_count() const { return simulation_.world().body_count(); }
   [[nodiscard]] std::string state_hash_text() const {
-    return hex16(state_hash(simulation_.world()));
+    return calder::state_hash_text(simulation_.world());
   }
   [[nodiscard]] double seed() const { return seed_; }
   [[nodiscard]] double kinetic() const { return kinetic_energy(simulation_.world()); }
