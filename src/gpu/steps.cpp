@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <variant>
 #include <vector>
 
 #include "../bulk/plan.hpp"
@@ -82,12 +83,174 @@ std::uint32_t boundary_flags(const Boundary& b) {
   return f;
 }
 
-// An op's parameters in steps.comp's order (P_FX ... P_REACH).
+// steps.comp's op kinds (its kUniform ... kLift).
+enum class ShaderOp : std::int32_t {
+  uniform,
+  gravity_scaled,  // g for every body: folded into the constant acceleration
+  drag,
+  friction,
+  attractor,
+  edge_force,
+  fan,
+  lift,
+};
+
+// The slots of an op's reals in steps.comp's op_reals (its P_FX ... P_REACH).
+enum Slot : std::size_t {
+  kFx,
+  kFy,
+  kC,  // drag: c; friction: mu; edge_force, fan: strength; lift: coefficient
+  kNormal,
+  kXMin,
+  kXMax,
+  kYMin,
+  kYMax,
+  kTolerance,
+  kPx,
+  kPy,
+  kGm,
+  kLo,
+  kHi,
+  kEps,
+  kReach,  // fan: reach; edge_force: margin
+  kSlots,
+};
+static_assert(kSlots == 16, "steps.comp reads 16 reals an op (prm)");
+
+// One op as steps.comp reads it: its kind, flags, law or edge (which), the
+// forces of each step when it has them, and its reals.
 template <class R>
-std::array<R, 16> reals_of(const bulk::detail::Params<R>& p, bulk::detail::OpKind kind) {
-  const R reach = kind == bulk::detail::OpKind::edge_force ? p.margin : p.reach;
-  return {p.fx,        p.fy, p.c,  p.normal, p.x_min, p.x_max, p.y_min, p.y_max,
-          p.tolerance, p.px, p.py, p.gm,     p.lo,    p.hi,    p.eps,   reach};
+struct OpRecord {
+  ShaderOp kind = ShaderOp::uniform;
+  std::int32_t flags = 0;
+  std::int32_t which = 0;
+  const double* per_step = nullptr;
+  std::array<R, kSlots> reals{};
+};
+
+// --- each field kind's law as an op record (the fast arithmetic's law) ---
+
+template <class R>
+void encode(const FieldKind<Gravity>::Law<R>& law, OpRecord<R>& op) {
+  op.kind = law.scaled ? ShaderOp::gravity_scaled : ShaderOp::uniform;
+  op.reals[kFx] = law.gx;
+  op.reals[kFy] = law.gy;
+}
+
+template <class R>
+void encode(const FieldKind<Wind>::Law<R>& law, OpRecord<R>& op) {
+  op.reals[kFx] = law.fx;
+  op.reals[kFy] = law.fy;
+}
+
+template <class R>
+void encode(const FieldKind<Helium>::Law<R>& law, OpRecord<R>& op) {
+  op.reals[kFx] = law.fx;
+  op.reals[kFy] = law.fy;
+}
+
+template <class R>
+void encode(const FieldKind<NoiseWind>::Law<R>& law, OpRecord<R>& op) {
+  op.reals[kFx] = law.fx;
+  op.reals[kFy] = law.fy;
+  op.per_step = law.per_step;
+}
+
+template <class R>
+void encode(const FieldKind<Drag>::Law<R>& law, OpRecord<R>& op) {
+  constexpr R kInf = std::numeric_limits<R>::infinity();
+  op.kind = ShaderOp::drag;
+  op.flags = kEverywhere | (law.never_reverse ? kNeverReverse : 0);
+  op.reals[kC] = law.c;
+  op.reals[kXMin] = -kInf;
+  op.reals[kXMax] = kInf;
+  op.reals[kYMin] = -kInf;
+  op.reals[kYMax] = kInf;
+}
+
+template <class R>
+void encode(const FieldKind<Liquid>::Law<R>& law, OpRecord<R>& op) {
+  op.kind = ShaderOp::drag;
+  op.flags = law.never_reverse ? kNeverReverse : 0;
+  op.reals[kC] = law.c;
+  op.reals[kXMin] = law.x_min;
+  op.reals[kXMax] = law.x_max;
+  op.reals[kYMin] = law.y_min;
+  op.reals[kYMax] = law.y_max;
+}
+
+template <class R>
+void encode(const FieldKind<Friction>::Law<R>& law, OpRecord<R>& op) {
+  op.kind = ShaderOp::friction;
+  op.flags = law.never_reverse ? kNeverReverse : 0;
+  op.which = edge_index(law.surface);
+  op.reals[kC] = law.mu;
+  op.reals[kNormal] = law.normal;
+  op.reals[kTolerance] = law.tolerance;
+}
+
+// The fast form: G M w r, w = 1 / (d_c^2 d), 1 / (q d) or 1 / s^3 (G M in
+// double, then rounded, as the CPU's kernels take it).
+template <class R>
+void encode(const FieldKind<Attractor>::Law<R>& law, OpRecord<R>& op) {
+  op.kind = ShaderOp::attractor;
+  op.which = law_index(law.clamp);
+  op.reals[kPx] = law.px;
+  op.reals[kPy] = law.py;
+  op.reals[kGm] = law.gm;
+  op.reals[kLo] = law.lo;
+  op.reals[kHi] = law.hi;
+  op.reals[kEps] = law.eps;
+}
+
+template <class R>
+void encode(const FieldKind<EdgeForce>::Law<R>& law, OpRecord<R>& op) {
+  op.kind = ShaderOp::edge_force;
+  op.reals[kC] = law.strength;
+  op.reals[kReach] = law.margin;
+}
+
+template <class R>
+void encode(const FieldKind<Fan>::Law<R>& law, OpRecord<R>& op) {
+  op.kind = ShaderOp::fan;
+  op.reals[kPx] = law.px;
+  op.reals[kPy] = law.py;
+  op.reals[kC] = law.strength;
+  op.reals[kReach] = law.reach;
+}
+
+template <class R>
+void encode(const FieldKind<Lift>::Law<R>& law, OpRecord<R>& op) {
+  op.kind = ShaderOp::lift;
+  op.reals[kC] = law.coefficient;
+}
+
+// Every kind with a law has an encode: a new kind can't be skipped silently.
+template <class F>
+concept Encoded = requires(const typename FieldKind<F>::template Law<float>& f32,
+                           const typename FieldKind<F>::template Law<double>& f64,
+                           OpRecord<float>& op32, OpRecord<double>& op64) {
+  encode(f32, op32);
+  encode(f64, op64);
+};
+template <class... Kinds>
+constexpr bool every_law_encoded(const std::variant<Kinds...>*) {
+  return ((!HasLaw<Kinds> || Encoded<Kinds>)&&...);
+}
+static_assert(every_law_encoded(static_cast<const Field*>(nullptr)),
+              "a field kind has a law but no encode (its op for steps.comp)");
+
+// The op record of a plan's op in precision R.
+template <class R>
+OpRecord<R> record_of(const bulk::detail::Op& op) {
+  OpRecord<R> record;
+  std::visit(
+      [&record](const auto& kind_law) {
+        // A kind without a law has an empty KindLaw, which compile() never makes.
+        if constexpr (requires { kind_law.law; }) encode<R>(kind_law.law, record);
+      },
+      op.law<R>());
+  return record;
 }
 
 }  // namespace
@@ -138,24 +301,21 @@ void Stepper::upload_ops(const bulk::detail::Plan& plan, int steps, Real2<R>& co
   std::vector<R> reals, per_step;
   constant = {R(0), R(0)};
   for (const bulk::detail::Op& op : plan.ops) {
-    const bulk::detail::Params<R>& p = op.params<R>();
-    if (op.kind == bulk::detail::OpKind::gravity_scaled) {  // g for every body: folded
-      constant.x += p.fx;
-      constant.y += p.fy;
+    const OpRecord<R> record = record_of<R>(op);
+    if (record.kind == ShaderOp::gravity_scaled) {  // g for every body: folded
+      constant.x += record.reals[kFx];
+      constant.y += record.reals[kFy];
       continue;
     }
-    std::int32_t flags = (p.everywhere ? kEverywhere : 0) | (p.never_reverse ? kNeverReverse : 0);
+    std::int32_t flags = record.flags;
     std::int32_t offset = 0;
-    if (op.per_step != nullptr) {
+    if (record.per_step != nullptr) {
       flags |= kPerStep;
       offset = static_cast<std::int32_t>(per_step.size());
-      for (int s = 0; s < 2 * steps; ++s) per_step.push_back(R(op.per_step[s]));
+      for (int s = 0; s < 2 * steps; ++s) per_step.push_back(R(record.per_step[s]));
     }
-    const std::int32_t which =
-        op.kind == bulk::detail::OpKind::friction ? edge_index(p.surface) : law_index(p.law);
-    ints.insert(ints.end(), {static_cast<std::int32_t>(op.kind), flags, which, offset});
-    const std::array<R, 16> values = reals_of(p, op.kind);
-    reals.insert(reals.end(), values.begin(), values.end());
+    ints.insert(ints.end(), {static_cast<std::int32_t>(record.kind), flags, record.which, offset});
+    reals.insert(reals.end(), record.reals.begin(), record.reals.end());
   }
   ops_ = static_cast<std::uint32_t>(ints.size() / 4);
   // The specialization: workgroup, fixed op count (or -1), kinds, flags,

@@ -36,7 +36,7 @@ layout(constant_id = 13) const int kWhich3 = 0;
 #define REAL4 vec4
 #endif
 
-// Op kinds (calder::bulk::detail::OpKind's order) and flags (steps.cpp).
+// Op kinds and flags (steps.cpp's ShaderOp and OpFlag).
 const int kUniform = 0;
 const int kGravityScaled = 1;
 const int kDrag = 2;
@@ -80,7 +80,8 @@ layout(std430, binding = 5) readonly buffer PerStep { REAL per_step[]; };
 layout(std430, binding = 6) buffer Bad { uint first_bad; };
 
 REAL prm(int op, int k) { return op_reals[16 * op + k]; }
-// Params<R>'s members by their index in op_reals (steps.cpp writes them).
+// An op's reals by their index in op_reals (steps.cpp's Slot; its encode
+// functions write them).
 const int P_FX = 0, P_FY = 1, P_C = 2, P_NORMAL = 3, P_XMIN = 4, P_XMAX = 5, P_YMIN = 6,
           P_YMAX = 7, P_TOL = 8, P_PX = 9, P_PY = 10, P_GM = 11, P_LO = 12, P_HI = 13, P_EPS = 14,
           P_REACH = 15;  // edge_force: its margin
