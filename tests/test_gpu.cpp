@@ -190,7 +190,7 @@ TEST_F(GpuTest, BadBodiesAreRefusedAsOnTheCpu) {
 
 // --- steps: the rain ---
 
-// The `rain` scene with n drops (as tests/test_movers.cpp): gravity scaled by
+// The `rain` scene with n drops (as tests/test_bulk.cpp): gravity scaled by
 // mass, drag, bouncing on the drops' radius off the walls and the floor.
 World rain_world(std::size_t n, Arithmetic arithmetic,
                  calder::StepBatchBackend backend = calder::bulk::step_batch) {
