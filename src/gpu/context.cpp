@@ -328,6 +328,7 @@ void Context::Impl::upload(std::span<const Upload> copies) {
   ensure_staging(total);
   std::size_t offset = 0;
   for (const Upload& u : copies) {
+    if (u.bytes == 0) continue;  // an empty array's pointer may be null
     std::memcpy(static_cast<char*>(staging_map) + offset, u.from, u.bytes);
     offset += u.bytes;
   }
@@ -360,6 +361,7 @@ void Context::Impl::download(std::span<const Download> copies) {
   });
   std::size_t offset = 0;
   for (const Download& d : copies) {
+    if (d.bytes == 0) continue;
     std::memcpy(d.to, static_cast<const char*>(staging_map) + offset, d.bytes);
     offset += d.bytes;
   }
