@@ -145,31 +145,6 @@ BENCHMARK(CpuDirect)
     ->UseRealTime()
     ->Unit(benchmark::kMillisecond);
 
-// The rain scene with n drops (the canvas grown with n: the same density as
-// the built-in scene's 1000 drops on 640 x 240).
-calder::World rain(std::size_t n, calder::Arithmetic arithmetic, calder::StepBatchBackend backend) {
-  const double scale = std::sqrt(static_cast<double>(n) / 1000.0);
-  calder::WorldDef def;
-  def.width = 640.0 * scale;
-  def.height = 240.0 * scale;
-  def.boundary = calder::Boundary::bounce(0.9, true, calder::Edges{true, true, false, true});
-  def.arithmetic = arithmetic;
-  def.backends.step_batch = backend;
-  calder::World world(def);
-  calder::Random rng(1);
-  std::vector<double> x(n), y(n), mass(n), radius(n);
-  for (std::size_t i = 0; i < n; ++i) {
-    x[i] = rng.random(def.width);
-    y[i] = rng.random(def.height);
-    mass[i] = rng.random(0.5, 3.0);
-    radius[i] = 2.0 * mass[i];
-  }
-  world.add_bodies({.x = x, .y = y, .mass = mass, .radius = radius});
-  world.add(calder::Gravity{.g = {0.0, 0.1}, .scale_by_mass = true});
-  world.add(calder::Drag{.c = 0.01});
-  return world;
-}
-
 calder::Arithmetic arithmetic_of(std::int64_t precision) {
   return precision == 64 ? calder::Arithmetic::float64 : calder::Arithmetic::float32;
 }
@@ -183,7 +158,8 @@ void GpuRain(benchmark::State& state) {
   }
   const bool transfers = state.range(2) != 0;
   gpu::open(device().info().index);
-  calder::World world = rain(n, a, transfers ? gpu::step_batch : calder::bulk::step_batch);
+  calder::World world =
+      calder::bench::gpu_rain_world(n, a, transfers ? gpu::step_batch : calder::bulk::step_batch);
   std::unique_ptr<gpu::DeviceWorld> on_device;
   if (!transfers) on_device = std::make_unique<gpu::DeviceWorld>(device(), world);
   gpu::Context& context = transfers ? *gpu::installed() : device();
@@ -208,7 +184,8 @@ BENCHMARK(GpuRain)
 
 void CpuRain(benchmark::State& state) {
   const auto n = static_cast<std::size_t>(state.range(0));
-  calder::World world = rain(n, arithmetic_of(state.range(1)), calder::bulk::step_batch);
+  calder::World world =
+      calder::bench::gpu_rain_world(n, arithmetic_of(state.range(1)), calder::bulk::step_batch);
   for (auto _ : state) world.step(calder::World::kBatchSteps);
   const double body_steps = static_cast<double>(n) * calder::World::kBatchSteps;
   state.counters["body-steps/s"] = benchmark::Counter(

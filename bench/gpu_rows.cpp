@@ -38,29 +38,6 @@ std::string megabytes(double bytes) {
   return text;
 }
 
-World rain_world(std::size_t n, StepBatchBackend backend) {
-  const double scale = std::sqrt(static_cast<double>(n) / 1000.0);
-  WorldDef def;
-  def.width = 640.0 * scale;
-  def.height = 240.0 * scale;
-  def.boundary = Boundary::bounce(0.9, true, Edges{true, true, false, true});
-  def.arithmetic = Arithmetic::float32;
-  def.backends.step_batch = backend;
-  World world(def);
-  Random rng(1);
-  std::vector<double> x(n), y(n), mass(n), radius(n);
-  for (std::size_t i = 0; i < n; ++i) {
-    x[i] = rng.random(def.width);
-    y[i] = rng.random(def.height);
-    mass[i] = rng.random(0.5, 3.0);
-    radius[i] = 2.0 * mass[i];
-  }
-  world.add_bodies({.x = x, .y = y, .mass = mass, .radius = radius});
-  world.add(Gravity{.g = {0.0, 0.1}, .scale_by_mass = true});
-  world.add(Drag{.c = 0.01});
-  return world;
-}
-
 void direct_rows(gpu::Context& context, bool quick, std::vector<GpuRow>& rows) {
   const std::size_t n = quick ? 1024 : std::size_t{1} << 20;
   Random rng(42);
@@ -98,14 +75,14 @@ void rain_rows(gpu::Context& context, bool quick, std::vector<GpuRow>& rows) {
   const std::size_t n = quick ? 10000 : 10000000;
   const double body_steps = static_cast<double>(n) * World::kBatchSteps;
   const std::string size = ", N = " + std::to_string(n) + ", batches of 128 steps";
-  World world = rain_world(n, bulk::step_batch);
+  World world = gpu_rain_world(n, Arithmetic::float32, bulk::step_batch);
   gpu::DeviceWorld on_device(context, world);
   const double resident =
       seconds_per_call([&] { on_device.step(World::kBatchSteps); }, quick ? 1 : 3);
   rows.push_back({"gpu rain float32" + size + ", bodies on the device", body_steps / resident,
                   "body-steps/s", "a few hundred bytes copied"});
   gpu::open(context.info().index);
-  World backed = rain_world(n, gpu::step_batch);
+  World backed = gpu_rain_world(n, Arithmetic::float32, gpu::step_batch);
   gpu::installed()->reset_stats();
   int calls = 0;
   const double copied = seconds_per_call(
@@ -130,6 +107,29 @@ std::string gpu_device_text() {
   } catch (const Error& e) {
     return e.what();
   }
+}
+
+World gpu_rain_world(std::size_t n, Arithmetic arithmetic, StepBatchBackend backend) {
+  const double scale = std::sqrt(static_cast<double>(n) / 1000.0);
+  WorldDef def;
+  def.width = 640.0 * scale;
+  def.height = 240.0 * scale;
+  def.boundary = Boundary::bounce(0.9, true, Edges{true, true, false, true});
+  def.arithmetic = arithmetic;
+  def.backends.step_batch = backend;
+  World world(def);
+  Random rng(1);
+  std::vector<double> x(n), y(n), mass(n), radius(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    x[i] = rng.random(def.width);
+    y[i] = rng.random(def.height);
+    mass[i] = rng.random(0.5, 3.0);
+    radius[i] = 2.0 * mass[i];
+  }
+  world.add_bodies({.x = x, .y = y, .mass = mass, .radius = radius});
+  world.add(Gravity{.g = {0.0, 0.1}, .scale_by_mass = true});
+  world.add(Drag{.c = 0.01});
+  return world;
 }
 
 std::vector<GpuRow> gpu_rows(bool quick) {

@@ -5,8 +5,11 @@
 // build has calder::gpu; bench_gpu.cpp's GpuRows smoke-runs it.)
 #pragma once
 
+#include <cstddef>
 #include <string>
 #include <vector>
+
+#include "calder/world.hpp"
 
 namespace calder::bench {
 
@@ -21,6 +24,10 @@ struct GpuRow {
 // the sums, 10^7 drops for the rain, as the GPU issue's targets). Returns
 // one row saying why when there is no device (name "gpu", value 0).
 std::vector<GpuRow> gpu_rows(bool quick);
+
+// The rain scene with n drops (the canvas grown with n: the same density as
+// the built-in scene's 1000 drops on 640 x 240), stepped by `backend`.
+World gpu_rain_world(std::size_t n, Arithmetic arithmetic, StepBatchBackend backend);
 
 // The device the rows ran on ("NVIDIA H100 80GB HBM3 (discrete GPU, Vulkan
 // 1.3.277)"), or why there is none.
