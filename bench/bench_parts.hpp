@@ -48,7 +48,8 @@ struct Plan {
   std::vector<int> threads{1, 2};
   std::vector<std::size_t> scaling_direct32_n{16384, 131072};
   std::vector<std::size_t> scaling_direct64_n{16384};
-  std::vector<std::size_t> scaling_bh_n{1000000};
+  std::vector<std::size_t> scaling_bh64_n{1000000};
+  std::vector<std::size_t> scaling_bh32_n{1000000, 10000000};
   std::vector<std::size_t> scaling_rain_n{1000000};
   std::vector<std::size_t> direct_n{1000, 4000, 16000};
   std::vector<std::size_t> bulk_n{1000, 100000, 1000000};

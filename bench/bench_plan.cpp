@@ -21,7 +21,8 @@ Plan quick_plan() {
   plan.learner_slice_pairs = 100'000;
   plan.scaling_direct32_n = {2000};
   plan.scaling_direct64_n = {2000};
-  plan.scaling_bh_n = {10000};
+  plan.scaling_bh64_n = {10000};
+  plan.scaling_bh32_n = {10000};
   plan.scaling_rain_n = {10000};
   return plan;
 }

@@ -7,6 +7,7 @@
 #include <thread>
 
 #include "bench_parts.hpp"
+#include "peers/fma_peak.hpp"
 #include "peers/nbody_systems.hpp"
 #include "peers/rain_world.hpp"
 
@@ -38,7 +39,7 @@ void add_rows(Table& table, const std::string& what, std::size_t n, const std::s
       serial = percent_text(std::max(0.0, (1.0 / speedup - 1.0 / p) / (1.0 - 1.0 / p)));
       if (serial == "-") serial = "0%";
     }
-    table.rows.push_back({what, count_text(n), std::to_string(threads[k]),
+    table.rows.push_back({what, n == 0 ? "-" : count_text(n), std::to_string(threads[k]),
                           rate_text(pt.rate) + " " + unit, ratio_text(speedup),
                           percent_text(speedup / p), serial,
                           printf_text("%.1f", 100.0 * pt.imbalance) + "%",
@@ -92,8 +93,59 @@ void direct_rows(const Plan& plan, Runner& runner, Table& table, bool float32) {
   }
 }
 
-void barnes_hut_rows(const Plan& plan, Runner& runner, Table& table, bool float32) {
-  for (const std::size_t n : plan.scaling_bh_n) {
+// The machine's own ceiling: FMA chains on every thread, no memory (the
+// kernels' vector width). Rows that scale like it lose nothing to calder:
+// what it loses is the machine's (shared cores, lower clocks with more cores
+// busy).
+void ceiling_rows(const Plan& plan, Runner& runner, Table& table) {
+  int bits = peers::pair_floor(nb::kernel_name()).bits;
+  const std::vector<int> widths = peers::fma_widths();
+  if (std::find(widths.begin(), widths.end(), bits) == widths.end()) bits = widths.front();
+  std::vector<Point> points;
+  for (const int threads : plan.threads) {
+    runner.status("scaling: FMA peak, " + std::to_string(bits) + "-bit, " +
+                  std::to_string(threads) + " thread(s)");
+    const Measured m =
+        runner.measure([&] { return peers::fma_flops(bits, threads, plan.fma_rounds); });
+    points.push_back({m.rate, 0.0});
+  }
+  add_rows(table, "ceiling: FMA peak, " + std::to_string(bits) + "-bit", 0, "flops/s", plan.threads,
+           points);
+}
+
+// Barnes-Hut's build phase by phase at each thread count (the last call's
+// wall times): the serial phases' and the parallel ones' share.
+struct PhaseRow {
+  std::string what;
+  std::size_t n = 0;
+  int threads = 0;
+  std::vector<nb::BarnesHutStats::Phase> phases;
+};
+
+Table phase_table(const std::vector<PhaseRow>& rows) {
+  Table table;
+  if (rows.empty()) return table;
+  table.columns = {"workload", ">N", ">threads"};
+  for (const nb::BarnesHutStats::Phase& ph : rows.front().phases) {
+    table.columns.push_back(std::string(">") + ph.name + (ph.serial ? " (serial)" : ""));
+  }
+  table.columns.push_back(">build");
+  for (const PhaseRow& row : rows) {
+    std::vector<std::string> cells{row.what, count_text(row.n), std::to_string(row.threads)};
+    double total = 0.0;
+    for (const nb::BarnesHutStats::Phase& ph : row.phases) {
+      cells.push_back(printf_text("%.2f", 1e3 * ph.seconds) + " ms");
+      total += ph.seconds;
+    }
+    cells.push_back(printf_text("%.2f", 1e3 * total) + " ms");
+    table.rows.push_back(std::move(cells));
+  }
+  return table;
+}
+
+void barnes_hut_rows(const Plan& plan, Runner& runner, Table& table, bool float32,
+                     std::vector<PhaseRow>& phases) {
+  for (const std::size_t n : float32 ? plan.scaling_bh32_n : plan.scaling_bh64_n) {
     const peers::NBodySystem system = peers::disk(n, 42);
     std::vector<double> ax(n);
     std::vector<double> ay(n);
@@ -115,6 +167,8 @@ void barnes_hut_rows(const Plan& plan, Runner& runner, Table& table, bool float3
         return 1.0;
       });
       points.push_back({m.rate, worst(solver.stats().work), build / step});
+      phases.push_back({std::string("Barnes-Hut, ") + precision_name(float32), n, threads,
+                        solver.stats().build_phases});
     }
     add_rows(table, std::string("Barnes-Hut, ") + precision_name(float32), n, "steps/s",
              plan.threads, points);
@@ -150,12 +204,15 @@ Section scaling_section(const Plan& plan, Runner& runner) {
   Table table;
   table.columns = {"workload",    ">N",      ">threads",        ">rate",      ">speedup",
                    ">efficiency", ">serial", ">work imbalance", ">tree build"};
+  ceiling_rows(plan, runner, table);
   for (const bool float32 : {true, false}) direct_rows(plan, runner, table, float32);
-  for (const bool float32 : {false, true}) barnes_hut_rows(plan, runner, table, float32);
+  std::vector<PhaseRow> phases;
+  for (const bool float32 : {false, true}) barnes_hut_rows(plan, runner, table, float32, phases);
   for (const Arithmetic a : {Arithmetic::float32, Arithmetic::book}) {
     rain_rows(plan, runner, table, a);
   }
   section.tables.push_back(std::move(table));
+  section.tables.push_back(phase_table(phases));
   const unsigned cores = std::thread::hardware_concurrency();
   section.notes = {
       "speedup: the rate over the rate at " + std::to_string(plan.threads.front()) +
@@ -172,7 +229,11 @@ Section scaling_section(const Plan& plan, Runner& runner) {
           "splits by the costs its last call measured: the first call (not timed) splits by "
           "bodies.",
       "tree build: Barnes-Hut's share of a step spent building the tree (bounding box, Morton "
-      "sort, subtrees, moments).",
+      "sort, subtrees, moments); the second table times its phases (the last call's wall "
+      "times): a serial phase runs on one thread while the others wait.",
+      "ceiling: the machine's FMA peak on every thread, no memory; a workload that scales "
+      "like it loses nothing to calder's decomposition (what the ceiling itself loses is "
+      "the machine's: lower clocks with more cores busy, cores shared with other machines).",
   };
   return section;
 }

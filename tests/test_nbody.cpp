@@ -885,6 +885,75 @@ TEST(NbodyBarnesHut, ClumpedAndCoincidentBodiesAreSortedAndSplitForAnyThreadCoun
   EXPECT_LT(std::sqrt(sum / count), 1e-3);
 }
 
+TEST(NbodyBarnesHut, DenseAndCoincidentRunsSortTheSameForAnyThreadCount) {
+  // A lattice of 64 points holding 300 bodies each (equal Morton codes: their
+  // order is their index order), a dense clump whose codes share their top
+  // digits (a bucket of the first radix pass that the team splits again at
+  // 16 threads), and a sparse disk around them. The same tree and the same
+  // bits for any number of threads, and accurate sums.
+  System s = disk(4000, 31, 400.0);
+  const System clump = disk(24000, 32, 3.0, 100.0, -50.0);
+  s.x.insert(s.x.end(), clump.x.begin(), clump.x.end());
+  s.y.insert(s.y.end(), clump.y.begin(), clump.y.end());
+  s.m.insert(s.m.end(), clump.m.begin(), clump.m.end());
+  for (std::size_t i = 0; i < 64 * 300; ++i) {
+    s.x.push_back(-200.0 + 25.0 * static_cast<double>(i % 8));
+    s.y.push_back(150.0 + 25.0 * static_cast<double>((i / 8) % 8));
+    s.m.push_back(0.5 + 0.001 * static_cast<double>(i % 7));
+  }
+  nb::BarnesHutOptions b;
+  static_cast<nb::Options&>(b) = plummer(0.5);
+  b.threads = 1;
+  nb::BarnesHut solver;
+  Field one{std::vector<double>(s.size()), std::vector<double>(s.size())};
+  solver.accelerations(s.x, s.y, s.m, one.ax, one.ay, b);
+  const nb::BarnesHutStats stats = solver.stats();
+  for (const int threads : {2, 3, 7, 16}) {
+    b.threads = threads;
+    Field f{std::vector<double>(s.size()), std::vector<double>(s.size())};
+    solver.accelerations(s.x, s.y, s.m, f.ax, f.ay, b);
+    EXPECT_TRUE(bit_identical(one, f)) << "threads " << threads;
+    EXPECT_EQ(solver.stats().nodes, stats.nodes) << "threads " << threads;
+    EXPECT_EQ(solver.stats().interactions, stats.interactions) << "threads " << threads;
+  }
+  double sum = 0.0;
+  int count = 0;
+  for (std::size_t i = 0; i < s.size(); i += 211) {
+    const Vec2 a = nb::reference_acceleration(s.x, s.y, s.m, i, plummer(0.5));
+    const double rel = std::hypot(one.ax[i] - a.x, one.ay[i] - a.y) / a.mag();
+    sum += rel * rel;
+    ++count;
+  }
+  EXPECT_LT(std::sqrt(sum / count), 1e-3);
+}
+
+TEST(NbodyBarnesHut, BuildPhasesShareOutTheBuild) {
+  // Seven phases in order, three of them serial (one thread, the others
+  // waiting); their wall times lie within the build's.
+  const System s = disk(20000, 33, 50.0 * std::sqrt(20.0));
+  nb::BarnesHutOptions b;
+  static_cast<nb::Options&>(b) = plummer(kSoftening);
+  for (const int threads : {1, 3}) {
+    b.threads = threads;
+    nb::BarnesHut solver;
+    Field f{std::vector<double>(s.size()), std::vector<double>(s.size())};
+    solver.accelerations(s.x, s.y, s.m, f.ax, f.ay, b);
+    const nb::BarnesHutStats& stats = solver.stats();
+    ASSERT_EQ(stats.build_phases.size(), 7u);
+    int serial = 0;
+    double total = 0.0;
+    for (const nb::BarnesHutStats::Phase& phase : stats.build_phases) {
+      EXPECT_STRNE(phase.name, "");
+      EXPECT_GE(phase.seconds, 0.0) << phase.name;
+      serial += phase.serial ? 1 : 0;
+      total += phase.seconds;
+    }
+    EXPECT_EQ(serial, 3);
+    EXPECT_GT(total, 0.0);
+    EXPECT_LE(total, stats.build_seconds * (1.0 + 1e-9));
+  }
+}
+
 TEST(NbodyBarnesHut, SolverReuseGivesTheSameResults) {
   nb::BarnesHut solver;
   nb::BarnesHutOptions b;

@@ -169,6 +169,15 @@ struct BarnesHutStats {
   std::uint64_t node_interactions = 0;  // of which with nodes (multipole expansions)
   double build_seconds = 0.0;           // bounding box, Morton sort, tree, moments
   double walk_seconds = 0.0;            // tree walks, pair sums, back to the caller's order
+  // The build's phases in order, wall seconds each (the team waits for the
+  // slowest thread at the end of each); a serial phase runs on one thread
+  // while the others wait: what limits the build's speedup.
+  struct Phase {
+    const char* name = "";
+    double seconds = 0.0;
+    bool serial = false;
+  };
+  std::vector<Phase> build_phases;
   // Per parallel region of the build and the walk, each thread's work.
   std::vector<ThreadWork> work;
 };

@@ -107,6 +107,11 @@ void BarnesHut::accelerations(std::span<const double> x, std::span<const double>
   w.walk(p, w.frame.scale, threads, w.single ? w.frame.factor : options.G, ax, ay);
   w.stats.walk_seconds = seconds_since(t1);
 
+  for (int k = 0; k < bh::kBuildPhases; ++k) {
+    w.stats.build_phases.push_back(BarnesHutStats::Phase{bh::kBuildPhaseNames[k].name,
+                                                         w.phase_end[k + 1] - w.phase_end[k],
+                                                         bh::kBuildPhaseNames[k].serial});
+  }
   w.stats.nodes = w.tree.nodes.size();
   w.stats.groups = w.tree.groups.size();
   w.stats.depth = w.tree.depth;

@@ -1,14 +1,16 @@
 // SPDX-License-Identifier: MIT
 // Barnes-Hut, the build: bounding square; 48-bit Morton codes (24 bits per
-// axis); their radix sort (8-bit digits: the threads split the keys by their
-// top digits until the ranges fit in cache, then sort ranges on their own;
-// the order is unique, so the same for any thread count); the tree,
+// axis); their radix sort (8-bit digits: the threads split the bodies, each
+// carried with its key, by their top digits until the ranges fit in cache,
+// then sort ranges on their own and write them out in Morton order; the
+// order is unique, so the same for any thread count); the tree,
 // depth first, each node the smallest quadtree cell holding its bodies; mass,
 // centre of mass and second to fourth moments bottom up (parallel axis
 // theorem). The top of the tree is split serially down to about kSubtrees
 // subtrees, which threads build on their own and which are then appended in
 // a fixed order: the same tree for any number of threads.
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -27,6 +29,10 @@ using bh::kBits;
 using bh::kCells;
 
 namespace {
+
+double now_seconds() {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
 
 // Interleaves the low 24 bits of v with zeros: bit k goes to bit 2k.
 std::uint64_t spread(std::uint32_t v) {
@@ -50,7 +56,10 @@ std::uint32_t compact(std::uint64_t x) {
   return static_cast<std::uint32_t>(x);
 }
 
-int leading_zeros(std::uint64_t x) {  // x != 0
+int leading_zeros(std::uint64_t x) {  // x != 0 (no <bit>: Emscripten's libc++ 13 lacks it)
+#if defined(__GNUC__) || defined(__clang__)
+  return __builtin_clzll(x);
+#else
   int n = 0;
   for (int step = 32; step > 0; step /= 2) {
     if ((x >> (64 - step)) == 0) {
@@ -59,6 +68,7 @@ int leading_zeros(std::uint64_t x) {  // x != 0
     }
   }
   return n;
+#endif
 }
 
 // This thread's share [lo, hi) of n items, the same in every pass.
@@ -79,69 +89,73 @@ Slice my_slice(std::size_t n) {
   return Slice{t, nt, n * t / nt, n * (t + 1) / nt};
 }
 
-// Keys with their indices, side by side.
-struct SortRun {
-  std::uint64_t* keys;
-  std::uint32_t* order;
-};
-
-// `from` into `out` sorted by key, equal keys in their order (short runs).
-inline void insertion_sort(SortRun from, SortRun out, std::size_t length) {
+// `from` into `out` sorted (distinct values: short runs).
+inline void insertion_sort(const std::uint64_t* from, std::uint64_t* out, std::size_t length) {
   for (std::size_t i = 0; i < length; ++i) {
-    const std::uint64_t key = from.keys[i];
-    const std::uint32_t index = from.order[i];
+    const std::uint64_t value = from[i];
     std::size_t j = i;
-    for (; j > 0 && out.keys[j - 1] > key; --j) {
-      out.keys[j] = out.keys[j - 1];
-      out.order[j] = out.order[j - 1];
-    }
-    out.keys[j] = key;
-    out.order[j] = index;
+    for (; j > 0 && out[j - 1] > value; --j) out[j] = out[j - 1];
+    out[j] = value;
   }
 }
 
-// Sorts `length` keys of `from` (with their indices) by their lowest
-// `digits` digits into `out`, stably, using `spare` (as long): a counting
-// pass by the top digit into spare, then each bucket the same way (from
-// becomes its spare); short runs by insertion.
-void sort_in_cache(SortRun from, SortRun spare, SortRun out, std::size_t length, int digits) {
-  constexpr std::size_t kMask = bh::kRadixBuckets - 1;
+// Sorts `length` distinct values of `from` into `out`, using `spare` (as
+// long): a counting pass into spare by the (up to 12) bits just below the
+// values' common prefix, about four values a bucket; then each bucket the
+// same way (from becomes its spare), or by insertion when short.
+void sort_in_cache(std::uint64_t* from, std::uint64_t* spare, std::uint64_t* out,
+                   std::size_t length) {
   constexpr std::size_t kInsertion = 32;
-  while (digits > 0 && length > kInsertion) {
-    const int shift = (digits - 1) * bh::kRadixBits;
-    std::uint32_t counts[bh::kRadixBuckets] = {};
-    for (std::size_t i = 0; i < length; ++i) ++counts[(from.keys[i] >> shift) & kMask];
-    --digits;
-    if (counts[(from.keys[0] >> shift) & kMask] == length) continue;  // one bucket: next digit
-    std::uint32_t offset = 0;
-    for (std::uint32_t& c : counts) {
-      const std::uint32_t here = c;
-      c = offset;
-      offset += here;
-    }
-    std::uint32_t starts[bh::kRadixBuckets];
-    std::copy(counts, counts + bh::kRadixBuckets, starts);
-    for (std::size_t i = 0; i < length; ++i) {
-      const std::uint32_t to = counts[(from.keys[i] >> shift) & kMask]++;
-      spare.keys[to] = from.keys[i];
-      spare.order[to] = from.order[i];
-    }
-    for (std::size_t b = 0; b < bh::kRadixBuckets; ++b) {
-      const std::uint32_t first = starts[b];
-      const std::uint32_t count = counts[b] - first;  // counts[b]: the bucket's end now
-      if (count <= kInsertion) {                      // most buckets: no call
-        insertion_sort(SortRun{spare.keys + first, spare.order + first},
-                       SortRun{out.keys + first, out.order + first}, count);
-        continue;
-      }
-      sort_in_cache(SortRun{spare.keys + first, spare.order + first},
-                    SortRun{from.keys + first, from.order + first},
-                    SortRun{out.keys + first, out.order + first}, count, digits);
-    }
+  constexpr int kMaxBits = 12;
+  if (length <= kInsertion) {
+    insertion_sort(from, out, length);
     return;
   }
-  insertion_sort(from, out, length);
+  std::uint64_t varying = 0;  // the bits in which some value differs from the first
+  for (std::size_t i = 1; i < length; ++i) varying |= from[i] ^ from[0];
+  const int top = 64 - leading_zeros(varying);  // varying != 0: distinct values
+  int bits = 1;
+  while (bits < kMaxBits && (std::size_t{4} << bits) < length) ++bits;
+  const int shift = std::max(0, top - bits);
+  const std::size_t buckets = std::size_t{1} << (top - shift);
+  const std::uint64_t mask = buckets - 1;
+  std::uint32_t counts[std::size_t{1} << kMaxBits];
+  std::fill(counts, counts + buckets, 0u);
+  for (std::size_t i = 0; i < length; ++i) ++counts[(from[i] >> shift) & mask];
+  std::uint32_t offset = 0;
+  for (std::size_t b = 0; b < buckets; ++b) {
+    const std::uint32_t here = counts[b];
+    counts[b] = offset;
+    offset += here;
+  }
+  for (std::size_t i = 0; i < length; ++i) spare[counts[(from[i] >> shift) & mask]++] = from[i];
+  std::uint32_t first = 0;  // counts[b]: bucket b's end now
+  for (std::size_t b = 0; b < buckets; ++b) {
+    const std::uint32_t count = counts[b] - first;
+    if (count <= kInsertion) {
+      insertion_sort(spare + first, out + first, count);
+    } else {
+      sort_in_cache(spare + first, from + first, out + first, count);
+    }
+    first = counts[b];
+  }
 }
+
+// The Morton code of a point in the root square.
+struct MortonCoder {
+  double x0;
+  double y0;
+  double to_cell;
+  explicit MortonCoder(const bh::Square& square)
+      : x0(square.x0), y0(square.y0), to_cell(static_cast<double>(kCells) / square.side) {}
+  std::uint32_t cell(double v, double origin) const {
+    const double c = std::min((v - origin) * to_cell, static_cast<double>(kCells - 1));  // >= 0
+    return static_cast<std::uint32_t>(static_cast<std::int32_t>(c));  // vectorises
+  }
+  std::uint64_t operator()(double x, double y) const {
+    return spread(cell(x, x0)) | (spread(cell(y, y0)) << 1);
+  }
+};
 
 }  // namespace
 
@@ -155,43 +169,61 @@ void BarnesHut::Workspace::build(std::span<const double> x, std::span<const doub
                                  std::span<const double> mass, int threads, double G) {
   const std::size_t n = x.size();
   team = bh::team_for(n, threads);
+  phase_end[0] = now_seconds();
   size_buffers(n);
 #if defined(_OPENMP)
 #pragma omp parallel num_threads(team)
 #endif
   {
     const Slice s = my_slice(n);
+    // Thread 0 notes when each phase ends (after the wait that ends it).
+    const auto mark = [&](int phase) {
+      if (s.t == 0) phase_end[phase] = now_seconds();
+    };
     bound(x, y, mass, s.t, s.nt);
 #if defined(_OPENMP)
 #pragma omp barrier
 #endif
+    mark(1);
     const bh::Square square = combine_bounds(s.nt);
-    morton(x, y, square, s.t, s.nt);
     if (s.t == 0) {  // read after the sort's barriers
       x0 = square.x0;
       y0 = square.y0;
       side = square.side;
       max_mass = square.max_mass;
     }
+    first_pass(x, y, mass, square, s.t, s.nt);
     sort_keys(s.t, s.nt);
-    sort_own_ranges(x, y, mass, s.t);
+    sort_own_ranges(s.t);
 #if defined(_OPENMP)
 #pragma omp barrier
+#endif
+    mark(2);
+#if defined(_OPENMP)
 #pragma omp single
 #endif
     plan_tree(G);
+    mark(3);
     build_own_parts(s.t);
 #if defined(_OPENMP)
 #pragma omp barrier
+#endif
+    mark(4);
+#if defined(_OPENMP)
 #pragma omp single
 #endif
     place_parts();
+    mark(5);
     copy_own_parts(s.t);
 #if defined(_OPENMP)
 #pragma omp barrier
+#endif
+    mark(6);
+#if defined(_OPENMP)
 #pragma omp single
 #endif
     finish_top();
+    mark(7);
   }
 }
 
@@ -200,9 +232,9 @@ void BarnesHut::Workspace::build(std::span<const double> x, std::span<const doub
 void BarnesHut::Workspace::size_buffers(std::size_t n) {
   const auto nt = static_cast<std::size_t>(team);
   keys.resize(n);
-  keys_tmp.resize(n);
   order.resize(n);
-  order_tmp.resize(n);
+  records.resize(n);
+  records_tmp.resize(n);
   sx.resize(n);
   sy.resize(n);
   sm.resize(n);
@@ -215,7 +247,7 @@ void BarnesHut::Workspace::size_buffers(std::size_t n) {
   work.assign(bh::kRegions * nt, 0);
   team_split_from =
       std::min(bh::kSortInCache, std::max(n / (nt * bh::kRangesPerThread), bh::kMinTeamSplit));
-  sort_large.assign(1, bh::SortRange{0, static_cast<std::uint32_t>(n), bh::kRadixDigits, false});
+  sort_large.clear();
   sort_small.clear();
 }
 
@@ -267,52 +299,83 @@ bh::Square BarnesHut::Workspace::combine_bounds(std::size_t nt) const {
   return bh::Square{xmin, ymin, larger, heaviest};
 }
 
-// Thread t's slice of the Morton keys (the same slice as its first radix pass).
-void BarnesHut::Workspace::morton(std::span<const double> x, std::span<const double> y,
-                                  const bh::Square& square, std::size_t t, std::size_t nt) {
+// The first radix pass, by the keys' top digit, after the Morton codes:
+// thread t codes and counts its slice (keys, in the caller's order until the
+// sort writes them over), then (the team's offsets known) writes its bodies
+// as records, with their keys, to their buckets in `records`. Stable: equal
+// digits stay in index order.
+void BarnesHut::Workspace::first_pass(std::span<const double> x, std::span<const double> y,
+                                      std::span<const double> mass, const bh::Square& square,
+                                      std::size_t t, std::size_t nt) {
+  constexpr int kShift = (bh::kRadixDigits - 1) * bh::kRadixBits;
   const std::size_t n = x.size();
   const std::size_t lo = n * t / nt;
   const std::size_t hi = n * (t + 1) / nt;
-  const double to_cell = static_cast<double>(kCells) / square.side;
-  const auto quantise = [&](double v, double origin) {
-    const double c = (v - origin) * to_cell;  // >= 0
-    return c >= static_cast<double>(kCells - 1) ? kCells - 1 : static_cast<std::uint32_t>(c);
-  };
+  const MortonCoder code(square);
+  std::size_t* counts = radix_counts.data() + t * bh::kRadixBuckets;
+  std::fill(counts, counts + bh::kRadixBuckets, std::size_t{0});
+  for (std::size_t i = lo; i < hi; ++i) ++counts[code(x[i], y[i]) >> kShift];
+#if defined(_OPENMP)
+#pragma omp barrier
+#endif
+  std::size_t mine[bh::kRadixBuckets];
+  std::size_t ends[bh::kRadixBuckets];
+  bucket_offsets(0, t, nt, mine, ends);
+  if (t == 0) {  // the whole range, as if it came from records_tmp: now in records
+    list_ranges(bh::SortRange{0, static_cast<std::uint32_t>(n), bh::kRadixDigits, true}, ends,
+                false);
+  }
+  bh::Record* out = records.data();
   for (std::size_t i = lo; i < hi; ++i) {
-    keys[i] = spread(quantise(x[i], square.x0)) | (spread(quantise(y[i], square.y0)) << 1);
-    order[i] = static_cast<std::uint32_t>(i);
+    const std::uint64_t key = code(x[i], y[i]);
+    out[mine[key >> kShift]++] =
+        bh::Record{x[i], y[i], mass[i], key, static_cast<std::uint32_t>(i)};
   }
   work[bh::kRegionBodies * nt + t] += hi - lo;
+#if defined(_OPENMP)
+#pragma omp barrier
+#endif
 }
 
-// Thread t's ranges (sorted by their keys' order, then gathered: the bodies
-// in Morton order).
-void BarnesHut::Workspace::sort_own_ranges(std::span<const double> x, std::span<const double> y,
-                                           std::span<const double> mass, std::size_t t) {
+// Thread t's offsets into each bucket of a pass over a range starting at
+// `begin` (exclusive prefix sums of the team's counts, bucket-major then
+// thread) and each bucket's end; returns the largest bucket's size.
+std::size_t BarnesHut::Workspace::bucket_offsets(std::size_t begin, std::size_t t, std::size_t nt,
+                                                 std::size_t* mine, std::size_t* ends) const {
+  std::size_t offset = begin;
+  std::size_t largest = 0;
+  for (std::size_t b = 0; b < bh::kRadixBuckets; ++b) {
+    const std::size_t first = offset;
+    for (std::size_t u = 0; u < nt; ++u) {
+      if (u == t) mine[b] = offset;
+      offset += radix_counts[u * bh::kRadixBuckets + b];
+    }
+    ends[b] = offset;
+    largest = std::max(largest, offset - first);
+  }
+  return largest;
+}
+
+// Thread t's ranges: each sorted, and its bodies written out in Morton order
+// (keys, order, sx, sy, sm).
+void BarnesHut::Workspace::sort_own_ranges(std::size_t t) {
   std::uint64_t done = 0;
   for (const std::uint32_t r : own_ranges[t]) {
     const bh::SortRange& range = sort_small[r];
     sort_range(range, sort_scratch[t]);
-    for (std::uint32_t k = range.begin; k < range.end; ++k) {
-      const std::uint32_t i = order[k];
-      sx[k] = x[i];
-      sy[k] = y[i];
-      sm[k] = mass[i];
-    }
     done += range.end - range.begin;
   }
   work[bh::kRegionRanges * static_cast<std::size_t>(team) + t] = done;
 }
 
-// Sorts (keys, order) by key, equal keys in index order (order holds 0, 1,
-// ... on entry), called by every thread t of a team of nt. A most
-// significant digit first radix sort: the team splits a range by its next
-// digit (a stable counting pass, thread slices in order) while it is larger
-// than team_split_from, then the ranges go to threads (assign_greedy), each
-// sorted on its own by its remaining digits (sort_own_ranges, sort_in_cache,
-// the same way). The sorted order is unique (key, then index), so it does
-// not depend on the number of threads or on how the work was split. Thread
-// t's first pass reads the slice that morton wrote: no barrier between.
+// Sorts the bodies by key, equal keys in index order, called by every
+// thread t of a team of nt after first_pass. A most significant digit first
+// radix sort: the team splits a range by its next digit (a stable counting
+// pass, thread slices in order) while it is larger than team_split_from,
+// then the ranges go to threads (assign_greedy), each sorted on its own by
+// its remaining digits (sort_own_ranges, sort_range). The sorted order is
+// unique (key, then index), so it does not depend on the number of threads
+// or on how the work was split.
 void BarnesHut::Workspace::sort_keys(std::size_t t, std::size_t nt) {
   for (std::size_t r = 0; r < sort_large.size(); ++r) {
     const bh::SortRange range = sort_large[r];  // a copy: the single below may grow the list
@@ -338,38 +401,20 @@ void BarnesHut::Workspace::split_range(const bh::SortRange& range, std::size_t t
   const std::size_t length = range.end - range.begin;
   const std::size_t lo = range.begin + length * t / nt;
   const std::size_t hi = range.begin + length * (t + 1) / nt;
-  const std::uint64_t* from_keys = range.in_tmp ? keys_tmp.data() : keys.data();
-  const std::uint32_t* from_order = range.in_tmp ? order_tmp.data() : order.data();
-  std::uint64_t* to_keys = range.in_tmp ? keys.data() : keys_tmp.data();
-  std::uint32_t* to_order = range.in_tmp ? order.data() : order_tmp.data();
+  const bh::Record* from = range.in_tmp ? records_tmp.data() : records.data();
+  bh::Record* to = range.in_tmp ? records.data() : records_tmp.data();
   std::size_t* counts = radix_counts.data() + t * bh::kRadixBuckets;
   std::fill(counts, counts + bh::kRadixBuckets, std::size_t{0});
-  for (std::size_t i = lo; i < hi; ++i) ++counts[(from_keys[i] >> shift) & kMask];
+  for (std::size_t i = lo; i < hi; ++i) ++counts[(from[i].key >> shift) & kMask];
 #if defined(_OPENMP)
 #pragma omp barrier
 #endif
-  // Every thread its own offsets (exclusive prefix sums, bucket-major then
-  // thread); thread 0 lists each bucket's range.
   std::size_t mine[bh::kRadixBuckets];
   std::size_t ends[bh::kRadixBuckets];
-  std::size_t offset = range.begin;
-  bool skip = false;  // every key has the same digit: nothing moves
-  for (std::size_t b = 0; b < bh::kRadixBuckets; ++b) {
-    const std::size_t first = offset;
-    for (std::size_t u = 0; u < nt; ++u) {
-      if (u == t) mine[b] = offset;
-      offset += radix_counts[u * bh::kRadixBuckets + b];
-    }
-    ends[b] = offset;
-    if (offset - first == length) skip = true;
-  }
+  const bool skip = bucket_offsets(range.begin, t, nt, mine, ends) == length;  // nothing moves
   if (t == 0) list_ranges(range, ends, skip);
   if (!skip) {
-    for (std::size_t i = lo; i < hi; ++i) {
-      const std::size_t to = mine[(from_keys[i] >> shift) & kMask]++;
-      to_keys[to] = from_keys[i];
-      to_order[to] = from_order[i];
-    }
+    for (std::size_t i = lo; i < hi; ++i) to[mine[(from[i].key >> shift) & kMask]++] = from[i];
   }
 #if defined(_OPENMP)
 #pragma omp barrier
@@ -393,28 +438,38 @@ void BarnesHut::Workspace::list_ranges(const bh::SortRange& range, const std::si
   }
 }
 
-// One thread sorts `range` by its remaining digits in its own buffers and
-// writes it to (keys, order).
+// One thread sorts `range` by its remaining digits and writes its bodies in
+// Morton order. Each key's remaining digits and the record's place in the
+// range are packed in one integer (distinct, and in index order for equal
+// keys: the passes are stable), sorted in the thread's buffers; the records
+// are then read in that order, from cache.
 void BarnesHut::Workspace::sort_range(const bh::SortRange& range, SortScratch& buffers) {
   const std::size_t length = range.end - range.begin;
-  const std::uint64_t* from_keys = (range.in_tmp ? keys_tmp.data() : keys.data()) + range.begin;
-  const std::uint32_t* from_order = (range.in_tmp ? order_tmp.data() : order.data()) + range.begin;
-  std::uint64_t* out_keys = keys.data() + range.begin;
-  std::uint32_t* out_order = order.data() + range.begin;
-  if (range.digits == 0 || length == 1) {  // sorted: in place, or copied back
-    if (range.in_tmp) {
-      std::copy(from_keys, from_keys + length, out_keys);
-      std::copy(from_order, from_order + length, out_order);
-    }
+  const bh::Record* from = (range.in_tmp ? records_tmp.data() : records.data()) + range.begin;
+  const auto put = [&](std::size_t k, const bh::Record& r) {
+    keys[k] = r.key;
+    order[k] = r.index;
+    sx[k] = r.x;
+    sy[k] = r.y;
+    sm[k] = r.m;
+  };
+  if (range.digits == 0 || length == 1) {  // sorted already
+    for (std::size_t k = 0; k < length; ++k) put(range.begin + k, from[k]);
     return;
   }
-  buffers.keys[0].assign(from_keys, from_keys + length);
-  buffers.order[0].assign(from_order, from_order + length);
-  buffers.keys[1].resize(length);
-  buffers.order[1].resize(length);
-  sort_in_cache(SortRun{buffers.keys[0].data(), buffers.order[0].data()},
-                SortRun{buffers.keys[1].data(), buffers.order[1].data()},
-                SortRun{out_keys, out_order}, length, range.digits);
+  // Key bits + place bits <= 40 + 16: a range here has at most
+  // kSortInCache bodies (or no key digits left).
+  const int place_bits = 64 - leading_zeros(length - 1);  // length >= 2
+  const std::uint64_t key_mask = (std::uint64_t{1} << (range.digits * bh::kRadixBits)) - 1;
+  std::vector<std::uint64_t>& packed = buffers.values[0];
+  std::vector<std::uint64_t>& spare = buffers.values[1];
+  packed.resize(2 * length);  // the values, then the sorted values
+  spare.resize(length);
+  for (std::size_t i = 0; i < length; ++i) packed[i] = ((from[i].key & key_mask) << place_bits) | i;
+  std::uint64_t* sorted = packed.data() + length;
+  sort_in_cache(packed.data(), spare.data(), sorted, length);
+  const std::uint64_t place_mask = (std::uint64_t{1} << place_bits) - 1;
+  for (std::size_t k = 0; k < length; ++k) put(range.begin + k, from[sorted[k] & place_mask]);
 }
 
 // The number of quadtree levels that the bodies [begin, end) share: their
@@ -508,8 +563,7 @@ void BarnesHut::Workspace::place_parts() {
     tree.leaves += parts[k].leaves;
   }
   const std::size_t nodes = part_base.back();
-  tree.nodes.resize(nodes);
-  tree.moments.resize(nodes);
+  tree.nodes.resize(nodes);  // tree.moments: the top and the parts' roots only (finish_top)
   parent.resize(nodes);
   (single ? node32.resize(nodes * bh::kMoments) : node64.resize(nodes * bh::kMoments));
   for (std::size_t k = 0; k < pending.size(); ++k) {
@@ -549,8 +603,8 @@ void BarnesHut::Workspace::copy_own_parts(std::size_t t) {
         for (std::uint32_t d = node.child; d < node.child + node.children; ++d) parent[d] = to;
       }
       tree.nodes[to] = node;
-      tree.moments[to] = part.moments[c];
-      kernel_moments(to);
+      if (c == 0) tree.moments[to] = part.moments[c];
+      kernel_moments(to, part.moments[c]);
     }
   }
   work[bh::kRegionNodes * nt + t] = hi - lo;
@@ -562,7 +616,7 @@ void BarnesHut::Workspace::finish_top() {
   parent[0] = ~std::uint32_t{0};
   for (auto it = top.rbegin(); it != top.rend(); ++it) {
     finish_node(tree, *it);
-    kernel_moments(*it);
+    kernel_moments(*it, tree.moments[*it]);
     const bh::Node& node = tree.nodes[*it];
     for (std::uint32_t c = node.child; c < node.child + node.children; ++c) parent[c] = *it;
   }

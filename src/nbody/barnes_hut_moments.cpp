@@ -49,13 +49,13 @@ void write_moments(const bh::Moments& m, const MomentScales& s, T* o) {
 
 }  // namespace
 
-void BarnesHut::Workspace::kernel_moments(std::size_t i) {
+void BarnesHut::Workspace::kernel_moments(std::size_t i, const bh::Moments& moments) {
   if (!single) {
-    write_moments(tree.moments[i], MomentScales{}, node64.data() + i * bh::kMoments);
+    write_moments(moments, MomentScales{}, node64.data() + i * bh::kMoments);
     return;
   }
   const double second = frame.scale * frame.scale * frame.mass_scale;
-  write_moments(tree.moments[i],
+  write_moments(moments,
                 MomentScales{frame.mass_scale, second, second * frame.scale,
                              second * frame.scale * frame.scale},
                 node32.data() + i * bh::kMoments);

@@ -13,6 +13,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <span>
 #include <utility>
 #include <vector>
@@ -28,13 +29,14 @@ inline constexpr std::uint32_t kCells = std::uint32_t{1} << kBits;
 inline constexpr int kRadixBits = 8;
 inline constexpr std::size_t kRadixBuckets = std::size_t{1} << kRadixBits;
 inline constexpr int kRadixDigits = 2 * kBits / kRadixBits;
-// Ranges of the sort up to this many keys are sorted by one thread in its
-// cache (12 bytes a key, twice: about 0.8 MB); larger ones are split by the
-// team. So that the ranges share out evenly, a range is also split by the
-// team while it holds more than 1 / kRangesPerThread of a thread's share of
-// the keys (but not below kMinTeamSplit keys).
-inline constexpr std::size_t kSortInCache = 32768;
-inline constexpr std::size_t kRangesPerThread = 32;
+// Ranges of the sort up to this many bodies are sorted by one thread: their
+// keys packed with their places (8 bytes a body, three arrays: 1.5 MB, in a
+// core's cache) and the bodies then read in that order; larger ones are
+// split by the team. So that the ranges share out evenly, a range is also
+// split by the team while it holds more than 1 / kRangesPerThread of a
+// thread's share of the bodies (but not below kMinTeamSplit bodies).
+inline constexpr std::size_t kSortInCache = 65536;
+inline constexpr std::size_t kRangesPerThread = 8;
 inline constexpr std::size_t kMinTeamSplit = 256;
 // Per node, as the multipole kernels read them (kernels.hpp): m, 3 Q (3),
 // 1.5 tr Q, 7.5 O (4), 1.5 P (2), 17.5 H (5), 7.5 tr H (3), 1.875 tr tr H.
@@ -50,8 +52,8 @@ inline constexpr std::size_t kSubtrees = 256;
 // The parallel regions of a step, whose per-thread work BarnesHutStats::work
 // reports (ThreadWork's region and unit).
 enum Region : int {
-  kRegionBodies,    // bounding box and Morton codes: bodies
-  kRegionSplit,     // the team's radix passes: keys
+  kRegionBodies,    // bounding box, Morton codes, the first radix pass: bodies
+  kRegionSplit,     // the team's further radix passes: keys
   kRegionRanges,    // ranges sorted by one thread, bodies gathered: keys
   kRegionSubtrees,  // subtrees built: bodies
   kRegionNodes,     // subtrees' nodes placed, kernel moments: nodes
@@ -60,13 +62,27 @@ enum Region : int {
   kRegions,
 };
 inline constexpr const char* kRegionNames[kRegions][2] = {
-    {"bounds and Morton codes", "bodies"},
-    {"radix passes", "keys"},
+    {"bounds, Morton codes, first radix pass", "bodies"},
+    {"further radix passes", "keys"},
     {"sorted ranges and gather", "keys"},
     {"subtrees", "bodies"},
     {"subtree nodes and moments", "nodes"},
     {"walk", "interactions"},
     {"scatter", "bodies"},
+};
+
+// The build's phases (BarnesHutStats::build_phases): name, and whether one
+// thread runs it while the others wait.
+inline constexpr int kBuildPhases = 7;
+struct BuildPhaseName {
+  const char* name;
+  bool serial;
+};
+inline constexpr BuildPhaseName kBuildPhaseNames[kBuildPhases] = {
+    {"bounding square", false}, {"Morton codes, sort, gather", false},
+    {"top of the tree", true},  {"subtrees", false},
+    {"subtrees placed", true},  {"nodes and kernel moments", false},
+    {"top moments", true},
 };
 
 // Items of the given sizes to nt threads: largest first (lower index on
@@ -75,6 +91,30 @@ inline constexpr const char* kRegionNames[kRegions][2] = {
 void assign_greedy(const std::vector<std::uint64_t>& sizes, std::size_t nt, std::size_t t,
                    std::vector<std::uint32_t>& mine, std::vector<std::uint32_t>& by_size,
                    std::vector<std::uint64_t>& load);
+
+// An allocator whose resize leaves new numbers unset: for arrays that the
+// build writes in full, every call, in parallel (zeroing them first would be
+// a serial pass over memory that each thread then writes again).
+template <typename T>
+struct UnsetAllocator : std::allocator<T> {
+  template <typename U>
+  struct rebind {
+    using other = UnsetAllocator<U>;
+  };
+  UnsetAllocator() = default;
+  template <typename U>
+  explicit UnsetAllocator(const UnsetAllocator<U>&) noexcept {}
+  template <typename U>
+  void construct(U* p) noexcept {
+    ::new (static_cast<void*>(p)) U;
+  }
+  template <typename U, typename... Args>
+  void construct(U* p, Args&&... args) {
+    ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
+  }
+};
+template <typename T>
+using UnsetVector = std::vector<T, UnsetAllocator<T>>;
 
 // The root square's lower corner and side, and the heaviest mass.
 struct Square {
@@ -177,12 +217,24 @@ struct Pending {
 };
 
 // Keys [begin, end) of the sort, which share their digits above the lowest
-// `digits`; in (keys_tmp, order_tmp) or in (keys, order).
+// `digits`; their records in records_tmp or in records.
 struct SortRange {
   std::uint32_t begin = 0;
   std::uint32_t end = 0;
   int digits = 0;
   bool in_tmp = false;
+};
+
+// A body as the sort moves it: its position, mass, Morton code and index.
+// The radix passes carry the bodies with their keys, so that the gather into
+// Morton order reads a range's records in cache instead of the caller's
+// arrays at random.
+struct Record {
+  double x;
+  double y;
+  double m;
+  std::uint64_t key;
+  std::uint32_t index;
 };
 
 // A group's bounding box and the origin of its float32 lists.
@@ -212,18 +264,17 @@ struct BarnesHut::Workspace {
   BarnesHutStats stats;
 
   // Build.
-  std::vector<std::uint64_t> keys;
-  std::vector<std::uint64_t> keys_tmp;
+  std::vector<std::uint64_t> keys;   // Morton codes, sorted
   std::vector<std::uint32_t> order;  // order[r]: the body of Morton rank r
-  std::vector<std::uint32_t> order_tmp;
-  std::vector<std::size_t> radix_counts;  // per thread and bucket
-  std::vector<bh::SortRange> sort_large;  // ranges the team splits by their next digit
-  std::vector<bh::SortRange> sort_small;  // ranges one thread sorts (all that are not split)
-  std::size_t team_split_from = 0;        // ranges larger than this are split by the team
-  struct alignas(64) SortScratch {        // a thread's buffers for its ranges
-    std::vector<std::uint64_t> keys[2];
-    std::vector<std::uint32_t> order[2];
-    std::vector<std::uint64_t> sizes;  // and for assign_greedy
+  std::vector<bh::Record> records;   // the bodies as the radix passes move them
+  std::vector<bh::Record> records_tmp;
+  std::vector<std::size_t> radix_counts;   // per thread and bucket
+  std::vector<bh::SortRange> sort_large;   // ranges the team splits by their next digit
+  std::vector<bh::SortRange> sort_small;   // ranges one thread sorts (all that are not split)
+  std::size_t team_split_from = 0;         // ranges larger than this are split by the team
+  struct alignas(64) SortScratch {         // a thread's buffers for its ranges
+    std::vector<std::uint64_t> values[2];  // a range's keys and local indices, packed
+    std::vector<std::uint64_t> sizes;      // and for assign_greedy
     std::vector<std::uint32_t> by_size;
     std::vector<std::uint64_t> loads;
   };
@@ -245,12 +296,14 @@ struct BarnesHut::Workspace {
   std::vector<double> partial;
   // work[region * team + t]: thread t's work in a region (bh::Region).
   std::vector<std::uint64_t> work;
+  // When each build phase ended (0: the start), on the steady clock, in seconds.
+  double phase_end[bh::kBuildPhases + 1] = {};
   int team = 1;
   bool single = false;  // float32 sums
   detail::FloatFrame frame;
-  std::vector<double> node64;  // kMoments per node, as the float64 kernels read them
-  std::vector<float> node32;   // the same scaled for float32
-  double x0 = 0.0;             // the root square [x0, x0 + side) x [y0, y0 + side)
+  bh::UnsetVector<double> node64;  // kMoments per node, as the float64 kernels read them
+  bh::UnsetVector<float> node32;   // the same scaled for float32
+  double x0 = 0.0;                 // the root square [x0, x0 + side) x [y0, y0 + side)
   double y0 = 0.0;
   double side = 1.0;
   double max_mass = 0.0;
@@ -276,7 +329,7 @@ struct BarnesHut::Workspace {
   };
   std::vector<Scratch> scratch;
   // Runs of groups with one parent (first group, count), walked together.
-  std::vector<std::uint32_t> parent;  // each node's (filled by the build; root: ~0)
+  bh::UnsetVector<std::uint32_t> parent;  // each node's (filled by the build; root: ~0)
   std::vector<std::pair<std::uint32_t, std::uint32_t>> units;
   std::vector<double> unit_cost;  // estimated (walk)
   std::vector<float> body_cost;   // interactions per body of the last call, by caller's index
@@ -288,14 +341,16 @@ struct BarnesHut::Workspace {
   void bound(std::span<const double> x, std::span<const double> y, std::span<const double> mass,
              std::size_t t, std::size_t nt);
   bh::Square combine_bounds(std::size_t nt) const;
-  void morton(std::span<const double> x, std::span<const double> y, const bh::Square& square,
-              std::size_t t, std::size_t nt);
+  void first_pass(std::span<const double> x, std::span<const double> y,
+                  std::span<const double> mass, const bh::Square& square, std::size_t t,
+                  std::size_t nt);
+  std::size_t bucket_offsets(std::size_t begin, std::size_t t, std::size_t nt, std::size_t* mine,
+                             std::size_t* ends) const;
   void sort_keys(std::size_t t, std::size_t nt);
   void split_range(const bh::SortRange& range, std::size_t t, std::size_t nt);
   void list_ranges(const bh::SortRange& range, const std::size_t* ends, bool skip);
   void sort_range(const bh::SortRange& range, SortScratch& buffers);
-  void sort_own_ranges(std::span<const double> x, std::span<const double> y,
-                       std::span<const double> mass, std::size_t t);
+  void sort_own_ranges(std::size_t t);
   void plan_tree(double G);
   void build_own_parts(std::size_t t);
   void place_parts();
@@ -315,7 +370,7 @@ struct BarnesHut::Workspace {
 
   // barnes_hut_moments.cpp: node i's moments as the kernels read them
   // (node64, or node32 in the frame), and bodies' float32 masses.
-  void kernel_moments(std::size_t i);
+  void kernel_moments(std::size_t i, const bh::Moments& moments);
   void float_masses(std::uint32_t begin, std::uint32_t end);
 
   // barnes_hut_walk.cpp

@@ -66,7 +66,8 @@ elseif(CASE STREQUAL "scaling")
   endif()
   expect_contains("${out}" "scaling with the thread count" "speedup" "efficiency"
                   "work imbalance" "Barnes-Hut, float64" "rain (calder::bulk), book"
-                  "the scaling table ran 1, 2, 3 thread(s)")
+                  "the scaling table ran 1, 2, 3 thread(s)" "ceiling: FMA peak"
+                  "top of the tree (serial)" "subtrees placed (serial)")
 elseif(CASE STREQUAL "bad_threads")
   calder_run(--quick --only scaling --threads 1,0)
   expect_error(2 CONTAINS "--threads" "1,0")
