@@ -99,14 +99,19 @@ inline void insertion_sort(const std::uint64_t* from, std::uint64_t* out, std::s
   }
 }
 
+// The bucket counts of sort_in_cache: at most 2^12 buckets a pass.
+inline constexpr int kMaxBucketBits = 12;
+inline constexpr std::size_t kMaxBuckets = std::size_t{1} << kMaxBucketBits;
+
 // Sorts `length` distinct values of `from` into `out`, using `spare` (as
-// long): a counting pass into spare by the (up to 12) bits just below the
-// values' common prefix, about four values a bucket; then each bucket the
-// same way (from becomes its spare), or by insertion when short.
+// long) and `counts` (kMaxBuckets, the thread's: each pass is done with it
+// before the next starts, so the recursion keeps no large frame): a counting
+// pass into spare by the (up to 12) bits just below the values' common
+// prefix, about four values a bucket; then each bucket the same way (from
+// becomes its spare), or by insertion when short.
 void sort_in_cache(std::uint64_t* from, std::uint64_t* spare, std::uint64_t* out,
-                   std::size_t length) {
+                   std::size_t length, std::uint32_t* counts) {
   constexpr std::size_t kInsertion = 32;
-  constexpr int kMaxBits = 12;
   if (length <= kInsertion) {
     insertion_sort(from, out, length);
     return;
@@ -115,29 +120,32 @@ void sort_in_cache(std::uint64_t* from, std::uint64_t* spare, std::uint64_t* out
   for (std::size_t i = 1; i < length; ++i) varying |= from[i] ^ from[0];
   const int top = 64 - leading_zeros(varying);  // varying != 0: distinct values
   int bits = 1;
-  while (bits < kMaxBits && (std::size_t{4} << bits) < length) ++bits;
+  while (bits < kMaxBucketBits && (std::size_t{4} << bits) < length) ++bits;
   const int shift = std::max(0, top - bits);
   const std::size_t buckets = std::size_t{1} << (top - shift);
   const std::uint64_t mask = buckets - 1;
-  std::uint32_t counts[std::size_t{1} << kMaxBits];
+  const auto bucket = [&](std::uint64_t value) { return (value >> shift) & mask; };
   std::fill(counts, counts + buckets, 0u);
-  for (std::size_t i = 0; i < length; ++i) ++counts[(from[i] >> shift) & mask];
+  for (std::size_t i = 0; i < length; ++i) ++counts[bucket(from[i])];
   std::uint32_t offset = 0;
   for (std::size_t b = 0; b < buckets; ++b) {
     const std::uint32_t here = counts[b];
     counts[b] = offset;
     offset += here;
   }
-  for (std::size_t i = 0; i < length; ++i) spare[counts[(from[i] >> shift) & mask]++] = from[i];
-  std::uint32_t first = 0;  // counts[b]: bucket b's end now
-  for (std::size_t b = 0; b < buckets; ++b) {
-    const std::uint32_t count = counts[b] - first;
+  for (std::size_t i = 0; i < length; ++i) spare[counts[bucket(from[i])]++] = from[i];
+  // The buckets, found again in spare (runs of one bucket number): counts is free.
+  for (std::size_t first = 0; first < length;) {
+    const std::uint64_t b = bucket(spare[first]);
+    std::size_t end = first + 1;
+    while (end < length && bucket(spare[end]) == b) ++end;
+    const std::size_t count = end - first;
     if (count <= kInsertion) {
       insertion_sort(spare + first, out + first, count);
     } else {
-      sort_in_cache(spare + first, from + first, out + first, count);
+      sort_in_cache(spare + first, from + first, out + first, count, counts);
     }
-    first = counts[b];
+    first = end;
   }
 }
 
@@ -465,9 +473,10 @@ void BarnesHut::Workspace::sort_range(const bh::SortRange& range, SortScratch& b
   std::vector<std::uint64_t>& spare = buffers.values[1];
   packed.resize(2 * length);  // the values, then the sorted values
   spare.resize(length);
+  buffers.counts.resize(kMaxBuckets);
   for (std::size_t i = 0; i < length; ++i) packed[i] = ((from[i].key & key_mask) << place_bits) | i;
   std::uint64_t* sorted = packed.data() + length;
-  sort_in_cache(packed.data(), spare.data(), sorted, length);
+  sort_in_cache(packed.data(), spare.data(), sorted, length, buffers.counts.data());
   const std::uint64_t place_mask = (std::uint64_t{1} << place_bits) - 1;
   for (std::size_t k = 0; k < length; ++k) put(range.begin + k, from[sorted[k] & place_mask]);
 }

@@ -274,6 +274,7 @@ struct BarnesHut::Workspace {
   std::size_t team_split_from = 0;         // ranges larger than this are split by the team
   struct alignas(64) SortScratch {         // a thread's buffers for its ranges
     std::vector<std::uint64_t> values[2];  // a range's keys and local indices, packed
+    std::vector<std::uint32_t> counts;     // their counting passes'
     std::vector<std::uint64_t> sizes;      // and for assign_greedy
     std::vector<std::uint32_t> by_size;
     std::vector<std::uint64_t> loads;
