@@ -125,14 +125,16 @@ struct Square {
 };
 
 // What the walk reads of a node.
+// No default values: the build writes every field of every node (Node{}
+// is all zeros), and a tree's nodes are not zeroed before (UnsetVector).
 struct Node {
-  double mx = 0.0;  // centre of mass
-  double my = 0.0;
-  double open2 = 0.0;       // accepted for a group farther than sqrt(open2) from (mx, my)
-  std::uint32_t begin = 0;  // bodies [begin, end) in Morton order
-  std::uint32_t end = 0;
-  std::uint32_t child = 0;     // first child (children are contiguous)
-  std::uint32_t children = 0;  // 0: a leaf
+  double mx;  // centre of mass
+  double my;
+  double open2;         // accepted for a group farther than sqrt(open2) from (mx, my)
+  std::uint32_t begin;  // bodies [begin, end) in Morton order
+  std::uint32_t end;
+  std::uint32_t child;     // first child (children are contiguous)
+  std::uint32_t children;  // 0: a leaf
 };
 
 // What the build needs besides: mass, second, third and fourth moments about
@@ -192,7 +194,7 @@ struct Lists {
 // A tree, or a part of one built on its own (the parallel build). Parts are
 // written by different threads side by side: each on its own cache lines.
 struct alignas(64) Tree {
-  std::vector<Node> nodes;
+  UnsetVector<Node> nodes;
   std::vector<Moments> moments;
   std::vector<std::uint32_t> groups;  // nodes whose bodies share a walk
   int depth = 0;

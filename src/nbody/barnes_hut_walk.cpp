@@ -95,7 +95,7 @@ const Stencil& stencil() {
 // The walk from the root for frame f: `accepted(index)` for each node it
 // accepts, `leaf(index)` for each leaf it opens, children in order.
 template <class Accepted, class Leaf>
-[[gnu::always_inline]] inline void visit(const std::vector<bh::Node>& nodes,
+[[gnu::always_inline]] inline void visit(const bh::UnsetVector<bh::Node>& nodes,
                                          const bh::GroupFrame& f, std::vector<std::uint32_t>& stack,
                                          Accepted accepted, Leaf leaf) {
   stack.clear();
@@ -259,7 +259,7 @@ void BarnesHut::Workspace::walk_unit(std::uint32_t first, std::uint32_t count, S
     lists = &s.lists64;
     unit_lists = &s.unit64;
   }
-  bh::Node unit;
+  bh::Node unit{};
   unit.begin = tree.nodes[tree.groups[first]].begin;
   unit.end = tree.nodes[tree.groups[first + count - 1]].end;
   const bh::GroupFrame fu = group_frame(unit, kFloat, scale, kUnitFarRatio);
