@@ -29,10 +29,6 @@ void floor_rows(DirectRun& run) {
   double* peak = run.peak;
   // The floor: the FMA peak at the kernels' vector width.
   pair_floor = peers::pair_floor(nb::kernel_name());
-  const std::vector<int> widths = peers::fma_widths();
-  if (std::find(widths.begin(), widths.end(), pair_floor.bits) == widths.end()) {
-    pair_floor.bits = widths.front();
-  }
   for (int threads : {1, 2}) {
     runner.status("FMA peak, " + std::to_string(pair_floor.bits) + "-bit, " +
                   std::to_string(threads) + " thread(s)");

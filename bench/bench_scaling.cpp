@@ -98,9 +98,7 @@ void direct_rows(const Plan& plan, Runner& runner, Table& table, bool float32) {
 // what it loses is the machine's (shared cores, lower clocks with more cores
 // busy).
 void ceiling_rows(const Plan& plan, Runner& runner, Table& table) {
-  int bits = peers::pair_floor(nb::kernel_name()).bits;
-  const std::vector<int> widths = peers::fma_widths();
-  if (std::find(widths.begin(), widths.end(), bits) == widths.end()) bits = widths.front();
+  const int bits = peers::pair_floor(nb::kernel_name()).bits;
   std::vector<Point> points;
   for (const int threads : plan.threads) {
     runner.status("scaling: FMA peak, " + std::to_string(bits) + "-bit, " +

@@ -11,6 +11,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <cstring>
+#include <initializer_list>
 #include <limits>
 #include <random>
 #include <string>
@@ -122,6 +123,20 @@ Errors relative_errors(const Field& a, const Field& ref) {
   return e;
 }
 
+// The RMS relative error of f against the reference sum, on every stride-th body.
+double sampled_rms_error(const System& s, const Field& f, const nb::Options& law,
+                         std::size_t stride) {
+  double sum = 0.0;
+  std::size_t count = 0;
+  for (std::size_t i = 0; i < s.size(); i += stride) {
+    const Vec2 a = nb::reference_acceleration(s.x, s.y, s.m, i, law);
+    const double rel = std::hypot(f.ax[i] - a.x, f.ay[i] - a.y) / a.mag();
+    sum += rel * rel;
+    ++count;
+  }
+  return std::sqrt(sum / static_cast<double>(count));
+}
+
 bool all_finite(const Field& f) {
   return std::all_of(f.ax.begin(), f.ax.end(), [](double v) { return std::isfinite(v); }) &&
          std::all_of(f.ay.begin(), f.ay.end(), [](double v) { return std::isfinite(v); });
@@ -131,6 +146,22 @@ bool bit_identical(const Field& a, const Field& b) {
   return a.ax.size() == b.ax.size() &&
          std::memcmp(a.ax.data(), b.ax.data(), a.ax.size() * sizeof(double)) == 0 &&
          std::memcmp(a.ay.data(), b.ay.data(), a.ay.size() * sizeof(double)) == 0;
+}
+
+// For each thread count, solver's results for s with b bit-identical to
+// `one`, and the same tree (nodes, interactions) as `stats` (a copy: the
+// solver's own are replaced by each call).
+void expect_same_for_threads(nb::BarnesHut& solver, const System& s, nb::BarnesHutOptions b,
+                             const Field& one, const nb::BarnesHutStats stats,
+                             std::initializer_list<int> threads) {
+  for (const int t : threads) {
+    b.threads = t;
+    Field f{std::vector<double>(s.size()), std::vector<double>(s.size())};
+    solver.accelerations(s.x, s.y, s.m, f.ax, f.ay, b);
+    EXPECT_TRUE(bit_identical(one, f)) << "threads " << t;
+    EXPECT_EQ(solver.stats().nodes, stats.nodes) << "threads " << t;
+    EXPECT_EQ(solver.stats().interactions, stats.interactions) << "threads " << t;
+  }
 }
 
 nb::Options plummer(double softening) {
@@ -615,15 +646,7 @@ TEST(NbodyBarnesHut, DefaultOptionsMeetTheAccuracyTarget) {
     b.precision = p;
     b.target_block = block;  // -1, the default, is 0 or 16 by instruction set
     const Field f = barnes_hut(s, b);
-    double sum = 0.0;
-    std::size_t count = 0;
-    for (std::size_t i = 0; i < kBodies; i += 25) {
-      const Vec2 a = nb::reference_acceleration(s.x, s.y, s.m, i, law);
-      const double rel = std::hypot(f.ax[i] - a.x, f.ay[i] - a.y) / a.mag();
-      sum += rel * rel;
-      ++count;
-    }
-    const double rms = std::sqrt(sum / static_cast<double>(count));
+    const double rms = sampled_rms_error(s, f, law, 25);
     EXPECT_LT(rms, 1e-3) << (p == nb::Precision::float32 ? "float32" : "float64")
                          << ", target_block " << block;
     EXPECT_GT(rms, 1e-6);  // an approximation: not the direct sum by accident
@@ -825,22 +848,8 @@ TEST(NbodyBarnesHut, LargeTreesAreBuiltInParallelPartsDeterministically) {
   nb::BarnesHut solver;
   Field one{std::vector<double>(s.size()), std::vector<double>(s.size())};
   solver.accelerations(s.x, s.y, s.m, one.ax, one.ay, b);
-  const nb::BarnesHutStats stats = solver.stats();
-  b.threads = 2;
-  Field two{std::vector<double>(s.size()), std::vector<double>(s.size())};
-  solver.accelerations(s.x, s.y, s.m, two.ax, two.ay, b);
-  EXPECT_TRUE(bit_identical(one, two));
-  EXPECT_EQ(solver.stats().nodes, stats.nodes);
-  EXPECT_EQ(solver.stats().interactions, stats.interactions);
-  double sum = 0.0;
-  int count = 0;
-  for (std::size_t i = 0; i < s.size(); i += 1499) {
-    const Vec2 a = nb::reference_acceleration(s.x, s.y, s.m, i, plummer(0.05));
-    const double rel = std::hypot(one.ax[i] - a.x, one.ay[i] - a.y) / a.mag();
-    sum += rel * rel;
-    ++count;
-  }
-  EXPECT_LT(std::sqrt(sum / count), 1e-3);
+  expect_same_for_threads(solver, s, b, one, solver.stats(), {2});
+  EXPECT_LT(sampled_rms_error(s, one, plummer(0.05), 1499), 1e-3);
 }
 
 TEST(NbodyBarnesHut, ClumpedAndCoincidentBodiesAreSortedAndSplitForAnyThreadCount) {
@@ -866,23 +875,9 @@ TEST(NbodyBarnesHut, ClumpedAndCoincidentBodiesAreSortedAndSplitForAnyThreadCoun
   solver.accelerations(s.x, s.y, s.m, one.ax, one.ay, b);
   const nb::BarnesHutStats stats = solver.stats();
   EXPECT_GE(stats.depth, 10);  // the clump lies 10 levels below the root
-  for (const int threads : {2, 3}) {
-    b.threads = threads;
-    Field f{std::vector<double>(s.size()), std::vector<double>(s.size())};
-    solver.accelerations(s.x, s.y, s.m, f.ax, f.ay, b);
-    EXPECT_TRUE(bit_identical(one, f)) << "threads " << threads;
-    EXPECT_EQ(solver.stats().nodes, stats.nodes);
-    EXPECT_EQ(solver.stats().interactions, stats.interactions);
-  }
-  double sum = 0.0;
-  int count = 0;
-  for (std::size_t i = 0; i < s.size(); i += 997) {  // the coincident ones among them
-    const Vec2 a = nb::reference_acceleration(s.x, s.y, s.m, i, plummer(0.01));
-    const double rel = std::hypot(one.ax[i] - a.x, one.ay[i] - a.y) / a.mag();
-    sum += rel * rel;
-    ++count;
-  }
-  EXPECT_LT(std::sqrt(sum / count), 1e-3);
+  expect_same_for_threads(solver, s, b, one, stats, {2, 3});
+  // Every 997th body: the coincident ones among them.
+  EXPECT_LT(sampled_rms_error(s, one, plummer(0.01), 997), 1e-3);
 }
 
 TEST(NbodyBarnesHut, DenseAndCoincidentRunsSortTheSameForAnyThreadCount) {
@@ -907,24 +902,8 @@ TEST(NbodyBarnesHut, DenseAndCoincidentRunsSortTheSameForAnyThreadCount) {
   nb::BarnesHut solver;
   Field one{std::vector<double>(s.size()), std::vector<double>(s.size())};
   solver.accelerations(s.x, s.y, s.m, one.ax, one.ay, b);
-  const nb::BarnesHutStats stats = solver.stats();
-  for (const int threads : {2, 3, 7, 16}) {
-    b.threads = threads;
-    Field f{std::vector<double>(s.size()), std::vector<double>(s.size())};
-    solver.accelerations(s.x, s.y, s.m, f.ax, f.ay, b);
-    EXPECT_TRUE(bit_identical(one, f)) << "threads " << threads;
-    EXPECT_EQ(solver.stats().nodes, stats.nodes) << "threads " << threads;
-    EXPECT_EQ(solver.stats().interactions, stats.interactions) << "threads " << threads;
-  }
-  double sum = 0.0;
-  int count = 0;
-  for (std::size_t i = 0; i < s.size(); i += 211) {
-    const Vec2 a = nb::reference_acceleration(s.x, s.y, s.m, i, plummer(0.5));
-    const double rel = std::hypot(one.ax[i] - a.x, one.ay[i] - a.y) / a.mag();
-    sum += rel * rel;
-    ++count;
-  }
-  EXPECT_LT(std::sqrt(sum / count), 1e-3);
+  expect_same_for_threads(solver, s, b, one, solver.stats(), {2, 3, 7, 16});
+  EXPECT_LT(sampled_rms_error(s, one, plummer(0.5), 211), 1e-3);
 }
 
 TEST(NbodyBarnesHut, BuildPhasesShareOutTheBuild) {

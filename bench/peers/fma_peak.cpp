@@ -5,6 +5,7 @@
 // same peaks as a native one and picks the widths the CPU has at run time.
 #include "peers/fma_peak.hpp"
 
+#include <algorithm>
 #include <cstddef>
 #include <stdexcept>
 #include <string>
@@ -166,6 +167,10 @@ PairFloor pair_floor(std::string_view nbody_kernel_name) {
   } else if (nbody_kernel_name == "avx2+fma") {
     floor.bits = 256;
     floor.flops_per_pair64 = kFlopsPerPair64FloatRsqrt;
+  }
+  const std::vector<int> widths = fma_widths();
+  if (std::find(widths.begin(), widths.end(), floor.bits) == widths.end()) {
+    floor.bits = widths.front();
   }
   return floor;
 }

@@ -53,7 +53,8 @@ double fma_flops(int bits, int threads, std::int64_t rounds);
 double rsqrt_estimates(int bits, std::int64_t rounds);
 
 // The floor that matches a set of n-body kernels (calder::nbody::kernel_name():
-// "avx512", "avx2+fma", "sse2", "generic"): the vector width they use and the
+// "avx512", "avx2+fma", "sse2", "generic"): the vector width they use (or,
+// where fma_widths() can't measure that width, the widest it can) and the
 // flops of one of their interactions in each precision.
 struct PairFloor {
   int bits = 128;
