@@ -7,6 +7,8 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <atomic>
+#include <chrono>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -15,8 +17,10 @@
 #include <limits>
 #include <random>
 #include <string>
+#include <thread>
 #include <vector>
 
+#include "../src/nbody/claims.hpp"  // the walk's shares of work, claimed in chunks
 #include "calder/error.hpp"
 #include "calder/fields.hpp"
 #include "calder/forces.hpp"
@@ -784,6 +788,56 @@ TEST(NbodyWork, BarnesHutRegionsAreSharedEvenlyAmongSixteenThreads) {
   }
 }
 
+// Claims on chunks of shares: every chunk goes to one thread; a share's own
+// thread takes it from the front, the others from the back; a thread that
+// starts when the others are done finds its share taken.
+TEST(NbodyWork, ClaimsHandEachChunkToOneThread) {
+  constexpr std::size_t kThreads = 16;
+  constexpr std::uint32_t kChunks = 8;
+  constexpr std::size_t kAll = kThreads * kChunks;
+  calder::nbody::detail::Claims claims;
+  claims.reset(kThreads);
+  for (std::size_t k = 0; k < kThreads; ++k) claims.open(k, kChunks);
+  std::vector<std::atomic<int>> times(kAll);
+  std::vector<std::atomic<int>> taker(kAll);
+  std::atomic<std::size_t> taken{0};
+  bool late_found_one = true;
+  const auto work = [&](std::size_t t) {
+    if (t == 0) {  // late: after every chunk, its own share's too, is taken (or a minute)
+      const auto give_up = std::chrono::steady_clock::now() + std::chrono::minutes(1);
+      while (taken.load() < kAll && std::chrono::steady_clock::now() < give_up) {
+        std::this_thread::yield();
+      }
+    }
+    std::size_t share = 0;
+    std::uint32_t chunk = 0;
+    bool any = false;
+    while (claims.next(t, share, chunk)) {
+      any = true;
+      ASSERT_LT(share, kThreads);
+      ASSERT_LT(chunk, kChunks);
+      ++times[share * kChunks + chunk];
+      taker[share * kChunks + chunk] = static_cast<int>(t);
+      ++taken;
+    }
+    if (t == 0) late_found_one = any;
+  };
+  std::vector<std::thread> threads;
+  for (std::size_t t = 0; t < kThreads; ++t) threads.emplace_back(work, t);
+  for (std::thread& th : threads) th.join();
+  EXPECT_FALSE(late_found_one);
+  for (std::size_t k = 0; k < kThreads; ++k) {
+    bool own = true;  // the owner's chunks come first, then the others'
+    for (std::uint32_t c = 0; c < kChunks; ++c) {
+      EXPECT_EQ(times[k * kChunks + c].load(), 1) << "share " << k << " chunk " << c;
+      const bool by_owner = taker[k * kChunks + c].load() == static_cast<int>(k);
+      EXPECT_FALSE(by_owner && !own) << "share " << k << " chunk " << c;
+      own = own && by_owner;
+    }
+  }
+  EXPECT_NE(taker[0].load(), 0);  // share 0's first chunk: not by its late thread
+}
+
 // Blocks of targets (target_block) take as multipoles the opened leaves
 // their own boxes accept: fewer interactions, more of them with nodes, and
 // the error stays near the group's (float64; float32 ignores the option).
@@ -907,7 +961,7 @@ TEST(NbodyBarnesHut, DenseAndCoincidentRunsSortTheSameForAnyThreadCount) {
 }
 
 TEST(NbodyBarnesHut, BuildPhasesShareOutTheBuild) {
-  // Seven phases in order, three of them serial (one thread, the others
+  // Eight phases in order, three of them serial (one thread, the others
   // waiting); their wall times lie within the build's.
   const System s = disk(20000, 33, 50.0 * std::sqrt(20.0));
   nb::BarnesHutOptions b;
@@ -918,7 +972,7 @@ TEST(NbodyBarnesHut, BuildPhasesShareOutTheBuild) {
     Field f{std::vector<double>(s.size()), std::vector<double>(s.size())};
     solver.accelerations(s.x, s.y, s.m, f.ax, f.ay, b);
     const nb::BarnesHutStats& stats = solver.stats();
-    ASSERT_EQ(stats.build_phases.size(), 7u);
+    ASSERT_EQ(stats.build_phases.size(), 8u);
     int serial = 0;
     double total = 0.0;
     for (const nb::BarnesHutStats::Phase& phase : stats.build_phases) {

@@ -87,7 +87,9 @@ struct Options {
 // rules that depend on the thread count alone (static slices, fixed cyclic or
 // greedy assignments), never on timing, so these counts are the same on any
 // machine: a 2-core machine running 16 threads sees the balance of a 16-core
-// run.
+// run. Barnes-Hut's walk counts each thread's share so: a thread done with
+// its share early takes unstarted chunks of the others' (no bit changes),
+// and their work still counts for the share it came from.
 struct ThreadWork {
   const char* region = "";
   const char* unit = "";

@@ -1,9 +1,9 @@
 // SPDX-License-Identifier: MIT
 // Barnes-Hut, the build: bounding square; 48-bit Morton codes (24 bits per
 // axis); their radix sort (8-bit digits: the threads split the bodies, each
-// carried with its key, by their top digits until the ranges fit in cache,
-// then sort ranges on their own and write them out in Morton order; the
-// order is unique, so the same for any thread count); the tree,
+// carried as a 32-byte record, by their top digits until the ranges fit in
+// cache, then sort ranges on their own and write them out in Morton order;
+// the order is unique, so the same for any thread count); the tree,
 // depth first, each node the smallest quadtree cell holding its bodies; mass,
 // centre of mass and second to fourth moments bottom up (parallel axis
 // theorem). The top of the tree is split serially down to about kSubtrees
@@ -22,6 +22,9 @@
 #if defined(_OPENMP)
 #include <omp.h>
 #endif
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
 
 namespace calder::nbody {
 
@@ -32,17 +35,6 @@ namespace {
 
 double now_seconds() {
   return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
-}
-
-// Interleaves the low 24 bits of v with zeros: bit k goes to bit 2k.
-std::uint64_t spread(std::uint32_t v) {
-  std::uint64_t x = v & (kCells - 1);
-  x = (x | (x << 16)) & 0x0000FFFF0000FFFFull;
-  x = (x | (x << 8)) & 0x00FF00FF00FF00FFull;
-  x = (x | (x << 4)) & 0x0F0F0F0F0F0F0F0Full;
-  x = (x | (x << 2)) & 0x3333333333333333ull;
-  x = (x | (x << 1)) & 0x5555555555555555ull;
-  return x;
 }
 
 // The inverse of spread: bits 0, 2, 4, ... of x.
@@ -89,81 +81,88 @@ Slice my_slice(std::size_t n) {
   return Slice{t, nt, n * t / nt, n * (t + 1) / nt};
 }
 
-// `from` into `out` sorted (distinct values: short runs).
-inline void insertion_sort(const std::uint64_t* from, std::uint64_t* out, std::size_t length) {
+// Whether a record starts a cache line (records are 32-byte aligned).
+inline bool starts_line(const bh::Record* r) {
+  return (reinterpret_cast<std::uintptr_t>(r) & 63u) == 0;
+}
+
+// kStage records to `to` (64-byte aligned) with non-temporal stores where
+// the processor has them; end_streams orders them before what follows.
+inline void stream_stage(const bh::Record* from, bh::Record* to) {
+#if defined(__SSE2__)
+  const auto* f = reinterpret_cast<const __m128i*>(from);
+  auto* d = reinterpret_cast<__m128i*>(to);
+  for (std::size_t k = 0; k < bh::kStage * sizeof(bh::Record) / 16; ++k) {
+    _mm_stream_si128(d + k, _mm_load_si128(f + k));
+  }
+#else
+  std::copy(from, from + bh::kStage, to);
+#endif
+}
+inline void end_streams() {
+#if defined(__SSE2__)
+  _mm_sfence();
+#endif
+}
+
+// Sorts values[0, length) in place by insertion, reading them from `from`
+// (which may be `values`): fast where few are out of order.
+inline void insertion_sort(const std::uint64_t* from, std::uint64_t* values, std::size_t length) {
   for (std::size_t i = 0; i < length; ++i) {
     const std::uint64_t value = from[i];
     std::size_t j = i;
-    for (; j > 0 && out[j - 1] > value; --j) out[j] = out[j - 1];
-    out[j] = value;
+    for (; j > 0 && values[j - 1] > value; --j) values[j] = values[j - 1];
+    values[j] = value;
   }
 }
 
-// The bucket counts of sort_in_cache: at most 2^12 buckets a pass.
-inline constexpr int kMaxBucketBits = 12;
-inline constexpr std::size_t kMaxBuckets = std::size_t{1} << kMaxBucketBits;
-
-// Sorts `length` distinct values of `from` into `out`, using `spare` (as
-// long) and `counts` (kMaxBuckets, the thread's: each pass is done with it
-// before the next starts, so the recursion keeps no large frame): a counting
-// pass into spare by the (up to 12) bits just below the values' common
-// prefix, about four values a bucket; then each bucket the same way (from
-// becomes its spare), or by insertion when short.
-void sort_in_cache(std::uint64_t* from, std::uint64_t* spare, std::uint64_t* out,
-                   std::size_t length, std::uint32_t* counts) {
+// Sorts `length` distinct values in place, with `spare` (as long) and the
+// thread's `counts` (2^kMaxBucketBits) and lists of large buckets (one a
+// level). One counting pass into spare by the bits just below the values'
+// common prefix, about two buckets a value, so most buckets hold one value;
+// buckets of more than kInsertion values sorted the same way (from spare,
+// with values as theirs); then one insertion pass back into values, which
+// moves only the few values that shared a small bucket.
+void sort_in_cache(std::uint64_t* values, std::uint64_t* spare, std::size_t length,
+                   std::uint32_t* counts,
+                   std::vector<std::pair<std::uint32_t, std::uint32_t>>* large, int level) {
   constexpr std::size_t kInsertion = 32;
   if (length <= kInsertion) {
-    insertion_sort(from, out, length);
+    insertion_sort(values, values, length);
     return;
   }
   std::uint64_t varying = 0;  // the bits in which some value differs from the first
-  for (std::size_t i = 1; i < length; ++i) varying |= from[i] ^ from[0];
-  const int top = 64 - leading_zeros(varying);  // varying != 0: distinct values
-  int bits = 1;
-  while (bits < kMaxBucketBits && (std::size_t{4} << bits) < length) ++bits;
-  const int shift = std::max(0, top - bits);
-  const std::size_t buckets = std::size_t{1} << (top - shift);
+  for (std::size_t i = 1; i < length; ++i) varying |= values[i] ^ values[0];
+  const int top = 64 - leading_zeros(varying);        // varying != 0: distinct values
+  const int wanted = 65 - leading_zeros(length - 1);  // 2 * length <= 2^wanted
+  const int bits = std::min({wanted, bh::kMaxBucketBits, top});
+  const int shift = top - bits;
+  const std::size_t buckets = std::size_t{1} << bits;
   const std::uint64_t mask = buckets - 1;
   const auto bucket = [&](std::uint64_t value) { return (value >> shift) & mask; };
   std::fill(counts, counts + buckets, 0u);
-  for (std::size_t i = 0; i < length; ++i) ++counts[bucket(from[i])];
+  for (std::size_t i = 0; i < length; ++i) ++counts[bucket(values[i])];
   std::uint32_t offset = 0;
   for (std::size_t b = 0; b < buckets; ++b) {
     const std::uint32_t here = counts[b];
     counts[b] = offset;
     offset += here;
   }
-  for (std::size_t i = 0; i < length; ++i) spare[counts[bucket(from[i])]++] = from[i];
-  // The buckets, found again in spare (runs of one bucket number): counts is free.
-  for (std::size_t first = 0; first < length;) {
-    const std::uint64_t b = bucket(spare[first]);
-    std::size_t end = first + 1;
-    while (end < length && bucket(spare[end]) == b) ++end;
-    const std::size_t count = end - first;
-    if (count <= kInsertion) {
-      insertion_sort(spare + first, out + first, count);
-    } else {
-      sort_in_cache(spare + first, from + first, out + first, count, counts);
-    }
-    first = end;
+  for (std::size_t i = 0; i < length; ++i) spare[counts[bucket(values[i])]++] = values[i];
+  // counts[b]: the end of bucket b. The large ones, listed: counts is free.
+  std::vector<std::pair<std::uint32_t, std::uint32_t>>& mine = large[level];
+  mine.clear();
+  std::uint32_t begin = 0;
+  for (std::size_t b = 0; b < buckets; ++b) {
+    if (counts[b] - begin > kInsertion) mine.emplace_back(begin, counts[b]);
+    begin = counts[b];
   }
+  for (std::size_t k = 0; k < mine.size(); ++k) {  // mine may not grow (deeper levels' lists)
+    const auto [first, end] = mine[k];
+    sort_in_cache(spare + first, values + first, end - first, counts, large, level + 1);
+  }
+  insertion_sort(spare, values, length);
 }
-
-// The Morton code of a point in the root square.
-struct MortonCoder {
-  double x0;
-  double y0;
-  double to_cell;
-  explicit MortonCoder(const bh::Square& square)
-      : x0(square.x0), y0(square.y0), to_cell(static_cast<double>(kCells) / square.side) {}
-  std::uint32_t cell(double v, double origin) const {
-    const double c = std::min((v - origin) * to_cell, static_cast<double>(kCells - 1));  // >= 0
-    return static_cast<std::uint32_t>(static_cast<std::int32_t>(c));  // vectorises
-  }
-  std::uint64_t operator()(double x, double y) const {
-    return spread(cell(x, x0)) | (spread(cell(y, y0)) << 1);
-  }
-};
 
 }  // namespace
 
@@ -201,37 +200,39 @@ void BarnesHut::Workspace::build(std::span<const double> x, std::span<const doub
       max_mass = square.max_mass;
     }
     first_pass(x, y, mass, square, s.t, s.nt);
-    sort_keys(s.t, s.nt);
-    sort_own_ranges(s.t);
+    mark(2);  // first_pass ends with the team's wait
+    const bh::MortonCoder code(square);
+    sort_keys(code, s.t, s.nt);
+    sort_own_ranges(code, s.t);
 #if defined(_OPENMP)
 #pragma omp barrier
 #endif
-    mark(2);
+    mark(3);
 #if defined(_OPENMP)
 #pragma omp single
 #endif
     plan_tree(G);
-    mark(3);
+    mark(4);
     build_own_parts(s.t);
 #if defined(_OPENMP)
 #pragma omp barrier
 #endif
-    mark(4);
+    mark(5);
 #if defined(_OPENMP)
 #pragma omp single
 #endif
     place_parts();
-    mark(5);
+    mark(6);
     copy_own_parts(s.t);
 #if defined(_OPENMP)
 #pragma omp barrier
 #endif
-    mark(6);
+    mark(7);
 #if defined(_OPENMP)
 #pragma omp single
 #endif
     finish_top();
-    mark(7);
+    mark(8);
   }
 }
 
@@ -249,6 +250,7 @@ void BarnesHut::Workspace::size_buffers(std::size_t n) {
   if (single) sm32.resize(n);
   radix_counts.resize(nt * bh::kRadixBuckets);
   if (sort_scratch.size() < nt) sort_scratch.resize(nt);
+  for (std::size_t t = 0; t < nt; ++t) sort_scratch[t].stage.resize(bh::kRadixBuckets * bh::kStage);
   own_ranges.resize(nt);
   own_parts.resize(nt);
   partial.assign(5 * nt, 0.0);
@@ -319,10 +321,14 @@ void BarnesHut::Workspace::first_pass(std::span<const double> x, std::span<const
   const std::size_t n = x.size();
   const std::size_t lo = n * t / nt;
   const std::size_t hi = n * (t + 1) / nt;
-  const MortonCoder code(square);
+  const bh::MortonCoder code(square);
   std::size_t* counts = radix_counts.data() + t * bh::kRadixBuckets;
   std::fill(counts, counts + bh::kRadixBuckets, std::size_t{0});
-  for (std::size_t i = lo; i < hi; ++i) ++counts[code(x[i], y[i]) >> kShift];
+  // The keys in the caller's order, until sort_range writes them over (in
+  // their own loop: it vectorises).
+  std::uint64_t* key = keys.data();
+  for (std::size_t i = lo; i < hi; ++i) key[i] = code(x[i], y[i]);
+  for (std::size_t i = lo; i < hi; ++i) ++counts[key[i] >> kShift];
 #if defined(_OPENMP)
 #pragma omp barrier
 #endif
@@ -333,12 +339,40 @@ void BarnesHut::Workspace::first_pass(std::span<const double> x, std::span<const
     list_ranges(bh::SortRange{0, static_cast<std::uint32_t>(n), bh::kRadixDigits, true}, ends,
                 false);
   }
+  // Each bucket's records gather in the thread's stage (in L1) and go out
+  // kStage at a time: whole cache lines, one page at a time, instead of one
+  // store in 256 far places a body.
   bh::Record* out = records.data();
-  for (std::size_t i = lo; i < hi; ++i) {
-    const std::uint64_t key = code(x[i], y[i]);
-    out[mine[key >> kShift]++] =
-        bh::Record{x[i], y[i], mass[i], key, static_cast<std::uint32_t>(i)};
+  bh::Record* stage = sort_scratch[t].stage.data();
+  std::uint8_t* fill = sort_scratch[t].fill;
+  // A full stage starts a cache line and goes out past the caches (no read
+  // of lines about to be written whole); a bucket that starts a line's
+  // second half writes its first record on its own.
+  std::uint8_t* want = sort_scratch[t].want;
+  for (std::size_t b = 0; b < bh::kRadixBuckets; ++b) {
+    fill[b] = 0;
+    want[b] = starts_line(out + mine[b]) ? bh::kStage : 1;
   }
+  for (std::size_t i = lo; i < hi; ++i) {
+    const std::size_t b = key[i] >> kShift;
+    bh::Record* slot = stage + b * bh::kStage;
+    slot[fill[b]] = bh::Record{x[i], y[i], mass[i], static_cast<std::uint32_t>(i)};
+    if (++fill[b] == want[b]) {
+      if (want[b] == bh::kStage) {
+        stream_stage(slot, out + mine[b]);
+      } else {
+        out[mine[b]] = slot[0];
+      }
+      mine[b] += want[b];
+      fill[b] = 0;
+      want[b] = bh::kStage;
+    }
+  }
+  for (std::size_t b = 0; b < bh::kRadixBuckets; ++b) {
+    const bh::Record* slot = stage + b * bh::kStage;
+    for (std::size_t k = 0; k < fill[b]; ++k) out[mine[b] + k] = slot[k];
+  }
+  end_streams();
   work[bh::kRegionBodies * nt + t] += hi - lo;
 #if defined(_OPENMP)
 #pragma omp barrier
@@ -366,11 +400,11 @@ std::size_t BarnesHut::Workspace::bucket_offsets(std::size_t begin, std::size_t 
 
 // Thread t's ranges: each sorted, and its bodies written out in Morton order
 // (keys, order, sx, sy, sm).
-void BarnesHut::Workspace::sort_own_ranges(std::size_t t) {
+void BarnesHut::Workspace::sort_own_ranges(const bh::MortonCoder& code, std::size_t t) {
   std::uint64_t done = 0;
   for (const std::uint32_t r : own_ranges[t]) {
     const bh::SortRange& range = sort_small[r];
-    sort_range(range, sort_scratch[t]);
+    sort_range(code, range, sort_scratch[t]);
     done += range.end - range.begin;
   }
   work[bh::kRegionRanges * static_cast<std::size_t>(team) + t] = done;
@@ -384,10 +418,10 @@ void BarnesHut::Workspace::sort_own_ranges(std::size_t t) {
 // its remaining digits (sort_own_ranges, sort_range). The sorted order is
 // unique (key, then index), so it does not depend on the number of threads
 // or on how the work was split.
-void BarnesHut::Workspace::sort_keys(std::size_t t, std::size_t nt) {
+void BarnesHut::Workspace::sort_keys(const bh::MortonCoder& code, std::size_t t, std::size_t nt) {
   for (std::size_t r = 0; r < sort_large.size(); ++r) {
     const bh::SortRange range = sort_large[r];  // a copy: the single below may grow the list
-    split_range(range, t, nt);
+    split_range(code, range, t, nt);
     work[bh::kRegionSplit * nt + t] +=
         (range.end - range.begin) * (t + 1) / nt - (range.end - range.begin) * t / nt;
   }
@@ -403,7 +437,8 @@ void BarnesHut::Workspace::sort_keys(std::size_t t, std::size_t nt) {
 // The team's pass over `range` by its top remaining digit: into the other
 // buffer, each sub-range then listed as large (split again), small (sorted
 // by one thread) or done.
-void BarnesHut::Workspace::split_range(const bh::SortRange& range, std::size_t t, std::size_t nt) {
+void BarnesHut::Workspace::split_range(const bh::MortonCoder& code, const bh::SortRange& range,
+                                       std::size_t t, std::size_t nt) {
   constexpr std::size_t kMask = bh::kRadixBuckets - 1;
   const int shift = (range.digits - 1) * bh::kRadixBits;
   const std::size_t length = range.end - range.begin;
@@ -413,7 +448,8 @@ void BarnesHut::Workspace::split_range(const bh::SortRange& range, std::size_t t
   bh::Record* to = range.in_tmp ? records.data() : records_tmp.data();
   std::size_t* counts = radix_counts.data() + t * bh::kRadixBuckets;
   std::fill(counts, counts + bh::kRadixBuckets, std::size_t{0});
-  for (std::size_t i = lo; i < hi; ++i) ++counts[(from[i].key >> shift) & kMask];
+  const auto digit = [&](const bh::Record& r) { return (code(r.x, r.y) >> shift) & kMask; };
+  for (std::size_t i = lo; i < hi; ++i) ++counts[digit(from[i])];
 #if defined(_OPENMP)
 #pragma omp barrier
 #endif
@@ -422,7 +458,7 @@ void BarnesHut::Workspace::split_range(const bh::SortRange& range, std::size_t t
   const bool skip = bucket_offsets(range.begin, t, nt, mine, ends) == length;  // nothing moves
   if (t == 0) list_ranges(range, ends, skip);
   if (!skip) {
-    for (std::size_t i = lo; i < hi; ++i) to[mine[(from[i].key >> shift) & kMask]++] = from[i];
+    for (std::size_t i = lo; i < hi; ++i) to[mine[digit(from[i])]++] = from[i];
   }
 #if defined(_OPENMP)
 #pragma omp barrier
@@ -450,35 +486,43 @@ void BarnesHut::Workspace::list_ranges(const bh::SortRange& range, const std::si
 // Morton order. Each key's remaining digits and the record's place in the
 // range are packed in one integer (distinct, and in index order for equal
 // keys: the passes are stable), sorted in the thread's buffers; the records
-// are then read in that order, from cache.
-void BarnesHut::Workspace::sort_range(const bh::SortRange& range, SortScratch& buffers) {
+// are then read in that order, from cache, and each key put together again
+// from the range's shared digits and its packed ones.
+void BarnesHut::Workspace::sort_range(const bh::MortonCoder& code, const bh::SortRange& range,
+                                      SortScratch& buffers) {
   const std::size_t length = range.end - range.begin;
   const bh::Record* from = (range.in_tmp ? records_tmp.data() : records.data()) + range.begin;
-  const auto put = [&](std::size_t k, const bh::Record& r) {
-    keys[k] = r.key;
+  const auto put = [&](std::size_t k, std::uint64_t key, const bh::Record& r) {
+    keys[k] = key;
     order[k] = r.index;
     sx[k] = r.x;
     sy[k] = r.y;
     sm[k] = r.m;
   };
-  if (range.digits == 0 || length == 1) {  // sorted already
-    for (std::size_t k = 0; k < length; ++k) put(range.begin + k, from[k]);
+  if (range.digits == 0 || length == 1) {  // sorted already, one key
+    const std::uint64_t key = code(from[0].x, from[0].y);
+    for (std::size_t k = 0; k < length; ++k) put(range.begin + k, key, from[k]);
     return;
   }
   // Key bits + place bits <= 40 + 16: a range here has at most
   // kSortInCache bodies (or no key digits left).
   const int place_bits = 64 - leading_zeros(length - 1);  // length >= 2
   const std::uint64_t key_mask = (std::uint64_t{1} << (range.digits * bh::kRadixBits)) - 1;
+  const std::uint64_t shared = code(from[0].x, from[0].y) & ~key_mask;
   std::vector<std::uint64_t>& packed = buffers.values[0];
   std::vector<std::uint64_t>& spare = buffers.values[1];
-  packed.resize(2 * length);  // the values, then the sorted values
+  packed.resize(length);
   spare.resize(length);
-  buffers.counts.resize(kMaxBuckets);
-  for (std::size_t i = 0; i < length; ++i) packed[i] = ((from[i].key & key_mask) << place_bits) | i;
-  std::uint64_t* sorted = packed.data() + length;
-  sort_in_cache(packed.data(), spare.data(), sorted, length, buffers.counts.data());
+  buffers.counts.resize(std::size_t{1} << bh::kMaxBucketBits);
+  for (std::size_t i = 0; i < length; ++i) {
+    packed[i] = ((code(from[i].x, from[i].y) & key_mask) << place_bits) | i;
+  }
+  sort_in_cache(packed.data(), spare.data(), length, buffers.counts.data(), buffers.large, 0);
   const std::uint64_t place_mask = (std::uint64_t{1} << place_bits) - 1;
-  for (std::size_t k = 0; k < length; ++k) put(range.begin + k, from[sorted[k] & place_mask]);
+  for (std::size_t k = 0; k < length; ++k) {
+    const std::uint64_t p = packed[k];
+    put(range.begin + k, shared | (p >> place_bits), from[p & place_mask]);
+  }
 }
 
 // The number of quadtree levels that the bodies [begin, end) share: their
@@ -707,23 +751,44 @@ void BarnesHut::Workspace::leaf_moments(bh::Node& node, bh::Moments& mo) const {
   }
   mx /= mass;
   my /= mass;
+  // The twelve sums two at a time: each lane's products in the order
+  // m dx dx ... dy (leftmost first), so each sum is what its own scalar loop
+  // gives, bit for bit.
+  using V2 = double __attribute__((vector_size(16)));
+  V2 qxx_qxy = {0.0, 0.0};
+  V2 qyy_oxxx = {0.0, 0.0};
+  V2 oxxy_oxyy = {0.0, 0.0};
+  V2 oyyy_hxxxx = {0.0, 0.0};
+  V2 hxxxy_hxxyy = {0.0, 0.0};
+  V2 hxyyy_hyyyy = {0.0, 0.0};
   for (std::uint32_t b = node.begin; b < node.end; ++b) {
     const double dx = sx[b] - mx;
     const double dy = sy[b] - my;
-    const double m = sm[b];
-    mo.qxx += m * dx * dx;
-    mo.qxy += m * dx * dy;
-    mo.qyy += m * dy * dy;
-    mo.oxxx += m * dx * dx * dx;
-    mo.oxxy += m * dx * dx * dy;
-    mo.oxyy += m * dx * dy * dy;
-    mo.oyyy += m * dy * dy * dy;
-    mo.hxxxx += m * dx * dx * dx * dx;
-    mo.hxxxy += m * dx * dx * dx * dy;
-    mo.hxxyy += m * dx * dx * dy * dy;
-    mo.hxyyy += m * dx * dy * dy * dy;
-    mo.hyyyy += m * dy * dy * dy * dy;
+    const V2 m = {sm[b], sm[b]};
+    const V2 x_y = {dx, dy};
+    const V2 x_x = {dx, dx};
+    const V2 y_y = {dy, dy};
+    const V2 y_x = {dy, dx};
+    const V2 one_x = {1.0, dx};  // times 1: exact, ends the shorter product
+    qxx_qxy += m * x_x * x_y;
+    qyy_oxxx += m * y_x * y_x * one_x;
+    oxxy_oxyy += m * x_x * x_y * y_y;
+    oyyy_hxxxx += m * y_x * y_x * y_x * one_x;
+    hxxxy_hxxyy += m * x_x * x_x * x_y * y_y;
+    hxyyy_hyyyy += m * x_y * y_y * y_y * y_y;
   }
+  mo.qxx = qxx_qxy[0];
+  mo.qxy = qxx_qxy[1];
+  mo.qyy = qyy_oxxx[0];
+  mo.oxxx = qyy_oxxx[1];
+  mo.oxxy = oxxy_oxyy[0];
+  mo.oxyy = oxxy_oxyy[1];
+  mo.oyyy = oyyy_hxxxx[0];
+  mo.hxxxx = oyyy_hxxxx[1];
+  mo.hxxxy = hxxxy_hxxyy[0];
+  mo.hxxyy = hxxxy_hxxyy[1];
+  mo.hxyyy = hxyyy_hyyyy[0];
+  mo.hyyyy = hxyyy_hyyyy[1];
   mo.mass = mass;
   node.mx = mx;
   node.my = my;

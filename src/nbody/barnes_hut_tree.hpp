@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "calder/nbody.hpp"
+#include "claims.hpp"
 #include "common.hpp"
 #include "kernels.hpp"
 
@@ -30,14 +31,23 @@ inline constexpr int kRadixBits = 8;
 inline constexpr std::size_t kRadixBuckets = std::size_t{1} << kRadixBits;
 inline constexpr int kRadixDigits = 2 * kBits / kRadixBits;
 // Ranges of the sort up to this many bodies are sorted by one thread: their
-// keys packed with their places (8 bytes a body, three arrays: 1.5 MB, in a
-// core's cache) and the bodies then read in that order; larger ones are
-// split by the team. So that the ranges share out evenly, a range is also
-// split by the team while it holds more than 1 / kRangesPerThread of a
-// thread's share of the bodies (but not below kMinTeamSplit bodies).
+// keys packed with their places (8 bytes a body, two arrays, and the
+// counts: 1.25 MB, in a core's cache) and the bodies then read in that
+// order; larger ones are split by the team. So that the ranges share out
+// evenly, a range is also split by the team while it holds more than
+// 1 / kRangesPerThread of a thread's share of the bodies (but not below
+// kMinTeamSplit bodies).
 inline constexpr std::size_t kSortInCache = 65536;
 inline constexpr std::size_t kRangesPerThread = 8;
 inline constexpr std::size_t kMinTeamSplit = 256;
+// The in-cache sort's counting passes: at most 2^16 buckets (256 KB of
+// counts), each pass on at least 7 bits of the 64 a packed key has, so at
+// most 10 levels.
+inline constexpr int kMaxBucketBits = 16;
+inline constexpr int kSortLevels = 10;
+// The first radix pass writes each bucket's records this many at a time
+// (128 bytes: two cache lines).
+inline constexpr std::size_t kStage = 4;
 // Per node, as the multipole kernels read them (kernels.hpp): m, 3 Q (3),
 // 1.5 tr Q, 7.5 O (4), 1.5 P (2), 17.5 H (5), 7.5 tr H (3), 1.875 tr tr H.
 inline constexpr std::size_t kMoments = 20;
@@ -48,6 +58,9 @@ inline constexpr std::size_t kParallelFrom = 2000;
 // tree does not depend on the number of threads): enough that each of 16 or
 // more threads gets several, of sizes that even out.
 inline constexpr std::size_t kSubtrees = 256;
+// The walk's share of each thread is cut into this many chunks; a thread
+// done with its own share takes the others' last unstarted chunks.
+inline constexpr std::size_t kChunksPerShare = 8;
 
 // The parallel regions of a step, whose per-thread work BarnesHutStats::work
 // reports (ThreadWork's region and unit).
@@ -73,15 +86,19 @@ inline constexpr const char* kRegionNames[kRegions][2] = {
 
 // The build's phases (BarnesHutStats::build_phases): name, and whether one
 // thread runs it while the others wait.
-inline constexpr int kBuildPhases = 7;
+inline constexpr int kBuildPhases = 8;
 struct BuildPhaseName {
   const char* name;
   bool serial;
 };
 inline constexpr BuildPhaseName kBuildPhaseNames[kBuildPhases] = {
-    {"bounding square", false}, {"Morton codes, sort, gather", false},
-    {"top of the tree", true},  {"subtrees", false},
-    {"subtrees placed", true},  {"nodes and kernel moments", false},
+    {"bounding square", false},
+    {"Morton codes, first radix pass", false},
+    {"sort's ranges, bodies in Morton order", false},
+    {"top of the tree", true},
+    {"subtrees", false},
+    {"subtrees placed", true},
+    {"nodes and kernel moments", false},
     {"top moments", true},
 };
 
@@ -227,15 +244,42 @@ struct SortRange {
   bool in_tmp = false;
 };
 
-// A body as the sort moves it: its position, mass, Morton code and index.
-// The radix passes carry the bodies with their keys, so that the gather into
-// Morton order reads a range's records in cache instead of the caller's
-// arrays at random.
-struct Record {
+// Interleaves the low 24 bits of v with zeros: bit k goes to bit 2k.
+inline std::uint64_t spread(std::uint32_t v) {
+  std::uint64_t x = v & (kCells - 1);
+  x = (x | (x << 16)) & 0x0000FFFF0000FFFFull;
+  x = (x | (x << 8)) & 0x00FF00FF00FF00FFull;
+  x = (x | (x << 4)) & 0x0F0F0F0F0F0F0F0Full;
+  x = (x | (x << 2)) & 0x3333333333333333ull;
+  x = (x | (x << 1)) & 0x5555555555555555ull;
+  return x;
+}
+
+// The Morton code of a point in the root square.
+struct MortonCoder {
+  double x0;
+  double y0;
+  double to_cell;
+  explicit MortonCoder(const bh::Square& square)
+      : x0(square.x0), y0(square.y0), to_cell(static_cast<double>(kCells) / square.side) {}
+  std::uint32_t cell(double v, double origin) const {
+    const double c = std::min((v - origin) * to_cell, static_cast<double>(kCells - 1));  // >= 0
+    return static_cast<std::uint32_t>(static_cast<std::int32_t>(c));  // vectorises
+  }
+  std::uint64_t operator()(double x, double y) const {
+    return spread(cell(x, x0)) | (spread(cell(y, y0)) << 1);
+  }
+};
+
+// A body as the sort moves it: its position, mass and index (32 bytes: two
+// to a cache line, none split between two). The radix passes carry the
+// bodies, so that writing them in Morton order reads a range's records in
+// cache instead of the caller's arrays at random; a key is worked out again
+// from x and y where a pass needs it (cheaper than moving it).
+struct alignas(32) Record {
   double x;
   double y;
   double m;
-  std::uint64_t key;
   std::uint32_t index;
 };
 
@@ -277,6 +321,11 @@ struct BarnesHut::Workspace {
   struct alignas(64) SortScratch {         // a thread's buffers for its ranges
     std::vector<std::uint64_t> values[2];  // a range's keys and local indices, packed
     std::vector<std::uint32_t> counts;     // their counting passes'
+    std::vector<std::pair<std::uint32_t, std::uint32_t>>
+        large[bh::kSortLevels];            // buckets to sort again
+    bh::UnsetVector<bh::Record> stage;     // the first pass's records on their way out
+    std::uint8_t fill[bh::kRadixBuckets];  // how many of each bucket's are in stage
+    std::uint8_t want[bh::kRadixBuckets];  // and how many it writes out next
     std::vector<std::uint64_t> sizes;      // and for assign_greedy
     std::vector<std::uint32_t> by_size;
     std::vector<std::uint64_t> loads;
@@ -326,7 +375,8 @@ struct BarnesHut::Workspace {
     std::vector<std::uint32_t> unit_near;    // nodes a unit accepts, not in its far list
     std::vector<std::uint32_t> unit_leaves;  // leaves a unit opens
     std::vector<std::uint32_t> stack;
-    std::vector<double> prefix;  // running costs of the units
+    std::vector<double> prefix;       // running costs of the units
+    std::vector<std::size_t> bounds;  // the shares' first units (share_bounds)
     std::uint64_t interactions = 0;
     std::uint64_t node_interactions = 0;
   };
@@ -336,6 +386,8 @@ struct BarnesHut::Workspace {
   std::vector<std::pair<std::uint32_t, std::uint32_t>> units;
   std::vector<double> unit_cost;  // estimated (walk)
   std::vector<float> body_cost;   // interactions per body of the last call, by caller's index
+  detail::Claims claims;          // on the chunks of the walk's shares
+  std::vector<std::uint64_t> chunk_work;  // interactions of each chunk, by share
 
   // barnes_hut_build.cpp: the whole build in one parallel region.
   void build(std::span<const double> x, std::span<const double> y, std::span<const double> mass,
@@ -349,11 +401,12 @@ struct BarnesHut::Workspace {
                   std::size_t nt);
   std::size_t bucket_offsets(std::size_t begin, std::size_t t, std::size_t nt, std::size_t* mine,
                              std::size_t* ends) const;
-  void sort_keys(std::size_t t, std::size_t nt);
-  void split_range(const bh::SortRange& range, std::size_t t, std::size_t nt);
+  void sort_keys(const bh::MortonCoder& code, std::size_t t, std::size_t nt);
+  void split_range(const bh::MortonCoder& code, const bh::SortRange& range, std::size_t t,
+                   std::size_t nt);
   void list_ranges(const bh::SortRange& range, const std::size_t* ends, bool skip);
-  void sort_range(const bh::SortRange& range, SortScratch& buffers);
-  void sort_own_ranges(std::size_t t);
+  void sort_range(const bh::MortonCoder& code, const bh::SortRange& range, SortScratch& buffers);
+  void sort_own_ranges(const bh::MortonCoder& code, std::size_t t);
   void plan_tree(double G);
   void build_own_parts(std::size_t t);
   void place_parts();
@@ -383,7 +436,7 @@ struct BarnesHut::Workspace {
   void scatter_share(std::size_t t, std::size_t nt, double factor, std::span<double> ax,
                      std::span<double> ay);
   void estimate_costs(std::size_t first, std::size_t last, bool history);
-  std::pair<std::size_t, std::size_t> my_units(std::size_t t, std::size_t nt, Scratch& s) const;
+  void share_bounds(std::size_t nt, Scratch& s) const;
   void walk_units(std::size_t first, std::size_t last, const detail::LawParams& p, double scale,
                   Scratch& s);
   template <typename T>

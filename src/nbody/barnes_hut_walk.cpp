@@ -10,9 +10,10 @@
 // centre. Groups that share a parent form a unit (walk_unit): one walk from
 // the root for all of them, its far list summed once for all their bodies,
 // each group's walk continued from what the unit left open. Units go to
-// threads in runs of equal estimated cost (walk); each body's sum is made by
-// one thread in a fixed order, so the results do not depend on the number
-// of threads.
+// threads in runs of equal estimated cost (walk), cut in chunks that a
+// thread done with its own run takes from the others' (claims.hpp); each
+// body's sum is made by one thread in a fixed order, so the results do not
+// depend on the number of threads or on which thread walked which unit.
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
@@ -115,12 +116,14 @@ template <class Accepted, class Leaf>
 }
 }  // namespace
 
-// Units go to threads in contiguous runs of about equal estimated cost (the
-// runs of Morton order keep each thread's bodies together). A unit's cost:
-// the interactions per body that the last call measured for its bodies
-// (by the caller's index: bodies move little between steps), or 1 a body on
-// a first call or when the number of bodies changed. The split depends on
-// the calls' inputs only, never on timing.
+// Units go to threads in contiguous runs (shares) of about equal estimated
+// cost (the runs of Morton order keep each thread's bodies together). A
+// unit's cost: the interactions per body that the last call measured for
+// its bodies (by the caller's index: bodies move little between steps), or
+// 1 a body on a first call or when the number of bodies changed. The shares
+// depend on the calls' inputs only, never on timing, and so does the work
+// counted for each (work[walk][t]: share t's); a thread that finishes its
+// share early walks the last chunks of the others' that are not started.
 void BarnesHut::Workspace::walk(const detail::LawParams& p, double scale, int threads,
                                 double factor, std::span<double> ax, std::span<double> ay) {
   const std::size_t n = sx.size();
@@ -133,6 +136,8 @@ void BarnesHut::Workspace::walk(const detail::LawParams& p, double scale, int th
   const bool history = body_cost.size() == n;
   body_cost.resize(n);
   const auto nt = static_cast<std::size_t>(bh::team_for(n, threads));
+  claims.reset(nt);
+  chunk_work.resize(nt * bh::kChunksPerShare);
 #if defined(_OPENMP)
 #pragma omp parallel num_threads(static_cast <int>(nt))
 #endif
@@ -144,15 +149,29 @@ void BarnesHut::Workspace::walk(const detail::LawParams& p, double scale, int th
 #endif
     Scratch& s = scratch[t];
     estimate_costs(units.size() * t / nt, units.size() * (t + 1) / nt, history);
+    claims.open(t, static_cast<std::uint32_t>(bh::kChunksPerShare));
 #if defined(_OPENMP)
 #pragma omp barrier
 #endif
-    const auto [first, last] = my_units(t, nt, s);
-    walk_units(first, last, p, scale, s);
-    work[bh::kRegionWalk * nt + t] = s.interactions;
+    share_bounds(nt, s);
+    std::size_t share = 0;
+    std::uint32_t chunk = 0;
+    while (claims.next(t, share, chunk)) {
+      const std::size_t first = s.bounds[share];
+      const std::size_t count = s.bounds[share + 1] - first;
+      const std::uint64_t before = s.interactions;
+      walk_units(first + count * chunk / bh::kChunksPerShare,
+                 first + count * (chunk + 1) / bh::kChunksPerShare, p, scale, s);
+      chunk_work[share * bh::kChunksPerShare + chunk] = s.interactions - before;
+    }
 #if defined(_OPENMP)
 #pragma omp barrier
 #endif
+    std::uint64_t mine = 0;
+    for (std::size_t c = 0; c < bh::kChunksPerShare; ++c) {
+      mine += chunk_work[t * bh::kChunksPerShare + c];
+    }
+    work[bh::kRegionWalk * nt + t] = mine;
     scatter_share(t, nt, factor, ax, ay);
   }
 }
@@ -171,10 +190,10 @@ void BarnesHut::Workspace::estimate_costs(std::size_t first, std::size_t last, b
   }
 }
 
-// Thread t's run of units: where the running cost passes t / nt and
-// (t + 1) / nt of the total (every thread works it out alike).
-std::pair<std::size_t, std::size_t> BarnesHut::Workspace::my_units(std::size_t t, std::size_t nt,
-                                                                   Scratch& s) const {
+// The shares' runs of units (every thread works them out alike): share k
+// is [bounds[k], bounds[k + 1]), from where the running cost passes k / nt
+// of the total.
+void BarnesHut::Workspace::share_bounds(std::size_t nt, Scratch& s) const {
   s.prefix.resize(unit_cost.size() + 1);
   s.prefix[0] = 0.0;
   for (std::size_t u = 0; u < unit_cost.size(); ++u) s.prefix[u + 1] = s.prefix[u] + unit_cost[u];
@@ -193,7 +212,8 @@ std::pair<std::size_t, std::size_t> BarnesHut::Workspace::my_units(std::size_t t
     }
     return k == nt ? unit_cost.size() : u;
   };
-  return {at(t), at(t + 1)};
+  s.bounds.resize(nt + 1);
+  for (std::size_t k = 0; k <= nt; ++k) s.bounds[k] = at(k);
 }
 
 // Walks units [first, last) and records their bodies' interactions.
