@@ -20,7 +20,7 @@
 #include <thread>
 #include <vector>
 
-#include "../src/nbody/claims.hpp"  // the walk's shares of work, claimed in chunks
+#include "../src/claims.hpp"  // the walk's shares of work, claimed in chunks
 #include "calder/error.hpp"
 #include "calder/fields.hpp"
 #include "calder/forces.hpp"
@@ -795,9 +795,8 @@ TEST(NbodyWork, ClaimsHandEachChunkToOneThread) {
   constexpr std::size_t kThreads = 16;
   constexpr std::uint32_t kChunks = 8;
   constexpr std::size_t kAll = kThreads * kChunks;
-  calder::nbody::detail::Claims claims;
-  claims.reset(kThreads);
-  for (std::size_t k = 0; k < kThreads; ++k) claims.open(k, kChunks);
+  calder::detail::Claims claims;
+  claims.reset(kThreads, kChunks);
   std::vector<std::atomic<int>> times(kAll);
   std::vector<std::atomic<int>> taker(kAll);
   std::atomic<std::size_t> taken{0};

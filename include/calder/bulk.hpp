@@ -67,10 +67,11 @@ const char* kernel_name();
 // The number of threads that threads = 0 means (1 without OpenMP).
 int max_threads();
 
-// The tiles each thread ran in the calling thread's last step_batch, by
-// thread (the team's size). Tiles go to threads in equal contiguous slices,
-// decided by the thread count alone: the counts show the balance of any
-// thread count on any machine.
+// The tiles of each thread's share in the calling thread's last step_batch,
+// by thread (the team's size). Tiles go to threads in equal contiguous
+// shares, decided by the thread count alone: the counts show the balance of
+// any thread count on any machine. (A thread done with its share takes
+// unstarted tiles of the others'; they still count for their share.)
 std::vector<std::size_t> last_batch_tiles();
 
 }  // namespace calder::bulk

@@ -87,9 +87,11 @@ struct Options {
 // rules that depend on the thread count alone (static slices, fixed cyclic or
 // greedy assignments), never on timing, so these counts are the same on any
 // machine: a 2-core machine running 16 threads sees the balance of a 16-core
-// run. Barnes-Hut's walk counts each thread's share so: a thread done with
-// its share early takes unstarted chunks of the others' (no bit changes),
-// and their work still counts for the share it came from.
+// run. Where threads claim work as they go (Barnes-Hut's walk, whose
+// threads done with their share take unstarted chunks of the others'; the
+// direct pair-once sum's tasks, taken in their fixed order by whichever
+// thread is free), no bit changes and the work still counts for the share it
+// belongs to: a fast core does more than its share, the counts stay the same.
 struct ThreadWork {
   const char* region = "";
   const char* unit = "";

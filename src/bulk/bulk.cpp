@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "../claims.hpp"
 #include "calder/step_batch.hpp"
 #include "plan.hpp"
 
@@ -25,6 +26,8 @@ namespace {
 // Fewer bodies than this run on one thread: a batch of a few tiles takes
 // microseconds, comparable to waking a thread.
 constexpr std::size_t kMinBodiesPerThread = 2 * kTile;
+// Each thread's share of the tiles is cut into this many chunks (claims).
+constexpr std::uint32_t kChunksPerShare = 8;
 
 // The first of bodies [first, first + count) whose position or velocity is
 // not finite (an infinity or NaN: every exponent bit set), or first + count.
@@ -57,6 +60,46 @@ std::size_t first_non_finite(const BodyColumnsOf<std::span<double>, std::span<co
 std::vector<std::size_t>& caller_tiles() {
   thread_local std::vector<std::size_t> tiles;
   return tiles;
+}
+
+// Runs run_tile(k) for tiles [0, tiles) on `threads` threads. Tiles are
+// independent: which thread runs one changes no bit of it. Thread t of nt
+// has the share of tiles [tiles t / nt, tiles (t + 1) / nt), cut in chunks;
+// a thread done with its share takes the last unstarted chunks of the
+// others' (src/claims.hpp). caller_tiles(): the tiles of each share.
+template <class RunTile>
+void run_in_shares(long long tiles, int threads, const RunTile& run_tile) {
+  const auto nt = static_cast<long long>(threads);
+  const auto share_first = [&](long long k) { return tiles * k / nt; };
+  std::vector<std::size_t>& per_share = caller_tiles();
+  per_share.resize(static_cast<std::size_t>(threads));
+  for (long long k = 0; k < nt; ++k) {
+    per_share[static_cast<std::size_t>(k)] =
+        static_cast<std::size_t>(share_first(k + 1) - share_first(k));
+  }
+  thread_local calder::detail::Claims caller_claims;
+  calder::detail::Claims& claims = caller_claims;
+  claims.reset(static_cast<std::size_t>(threads), kChunksPerShare);
+#if defined(_OPENMP)
+#pragma omp parallel num_threads(threads) if (threads > 1)
+#endif
+  {
+#if defined(_OPENMP)
+    const auto t = static_cast<std::size_t>(omp_get_thread_num());
+#else
+    const std::size_t t = 0;
+#endif
+    std::size_t share = 0;
+    std::uint32_t chunk = 0;
+    while (claims.next(t, share, chunk)) {
+      const long long first = share_first(static_cast<long long>(share));
+      const long long count = share_first(static_cast<long long>(share) + 1) - first;
+      for (long long k = first + count * chunk / kChunksPerShare;
+           k < first + count * (chunk + 1) / kChunksPerShare; ++k) {
+        run_tile(k);
+      }
+    }
+  }
 }
 
 }  // namespace
@@ -100,26 +143,7 @@ bool step_batch(const StepBatch& batch, std::string* why_not) {
     const std::size_t i = first_non_finite(batch.bodies, first, count);
     if (i < first + count) bad[static_cast<std::size_t>(t)] = i;
   };
-  // Tiles are independent: which thread runs one changes no bit of it.
-  // Thread t of nt runs tiles [tiles t / nt, tiles (t + 1) / nt).
-  std::vector<std::size_t>& per_thread = caller_tiles();
-  per_thread.assign(static_cast<std::size_t>(threads), 0);
-#if defined(_OPENMP)
-#pragma omp parallel num_threads(threads) if (threads > 1)
-#endif
-  {
-#if defined(_OPENMP)
-    const auto t = static_cast<long long>(omp_get_thread_num());
-    const auto nt = static_cast<long long>(omp_get_num_threads());
-#else
-    const long long t = 0;
-    const long long nt = 1;
-#endif
-    const long long first = tiles * t / nt;
-    const long long last = tiles * (t + 1) / nt;
-    for (long long k = first; k < last; ++k) run_tile(k);
-    per_thread[static_cast<std::size_t>(t)] = static_cast<std::size_t>(last - first);
-  }
+  run_in_shares(tiles, threads, run_tile);
   if (batch.first_non_finite != nullptr) {
     *batch.first_non_finite = n;
     for (const std::size_t i : bad) {

@@ -18,8 +18,8 @@
 #include <utility>
 #include <vector>
 
+#include "../claims.hpp"
 #include "calder/nbody.hpp"
-#include "claims.hpp"
 #include "common.hpp"
 #include "kernels.hpp"
 
@@ -46,8 +46,8 @@ inline constexpr std::size_t kMinTeamSplit = 256;
 inline constexpr int kMaxBucketBits = 16;
 inline constexpr int kSortLevels = 10;
 // The first radix pass writes each bucket's records this many at a time
-// (128 bytes: two cache lines).
-inline constexpr std::size_t kStage = 4;
+// (256 bytes: four cache lines; 64 KB of staging a thread, in its L2).
+inline constexpr std::size_t kStage = 8;
 // Per node, as the multipole kernels read them (kernels.hpp): m, 3 Q (3),
 // 1.5 tr Q, 7.5 O (4), 1.5 P (2), 17.5 H (5), 7.5 tr H (3), 1.875 tr tr H.
 inline constexpr std::size_t kMoments = 20;
@@ -386,7 +386,7 @@ struct BarnesHut::Workspace {
   std::vector<std::pair<std::uint32_t, std::uint32_t>> units;
   std::vector<double> unit_cost;  // estimated (walk)
   std::vector<float> body_cost;   // interactions per body of the last call, by caller's index
-  detail::Claims claims;          // on the chunks of the walk's shares
+  calder::detail::Claims claims;  // on the chunks of the walk's shares
   std::vector<std::uint64_t> chunk_work;  // interactions of each chunk, by share
 
   // barnes_hut_build.cpp: the whole build in one parallel region.

@@ -11,7 +11,7 @@
 // the root for all of them, its far list summed once for all their bodies,
 // each group's walk continued from what the unit left open. Units go to
 // threads in runs of equal estimated cost (walk), cut in chunks that a
-// thread done with its own run takes from the others' (claims.hpp); each
+// thread done with its own run takes from the others' (src/claims.hpp); each
 // body's sum is made by one thread in a fixed order, so the results do not
 // depend on the number of threads or on which thread walked which unit.
 #include <algorithm>
@@ -136,8 +136,8 @@ void BarnesHut::Workspace::walk(const detail::LawParams& p, double scale, int th
   const bool history = body_cost.size() == n;
   body_cost.resize(n);
   const auto nt = static_cast<std::size_t>(bh::team_for(n, threads));
-  claims.reset(nt);
-  chunk_work.resize(nt * bh::kChunksPerShare);
+  claims.reset(nt, static_cast<std::uint32_t>(bh::kChunksPerShare));
+  chunk_work.assign(nt * bh::kChunksPerShare, 0);
 #if defined(_OPENMP)
 #pragma omp parallel num_threads(static_cast <int>(nt))
 #endif
@@ -149,7 +149,6 @@ void BarnesHut::Workspace::walk(const detail::LawParams& p, double scale, int th
 #endif
     Scratch& s = scratch[t];
     estimate_costs(units.size() * t / nt, units.size() * (t + 1) / nt, history);
-    claims.open(t, static_cast<std::uint32_t>(bh::kChunksPerShare));
 #if defined(_OPENMP)
 #pragma omp barrier
 #endif
@@ -167,12 +166,14 @@ void BarnesHut::Workspace::walk(const detail::LawParams& p, double scale, int th
 #if defined(_OPENMP)
 #pragma omp barrier
 #endif
-    std::uint64_t mine = 0;
-    for (std::size_t c = 0; c < bh::kChunksPerShare; ++c) {
-      mine += chunk_work[t * bh::kChunksPerShare + c];
-    }
-    work[bh::kRegionWalk * nt + t] = mine;
     scatter_share(t, nt, factor, ax, ay);
+  }
+  for (std::size_t t = 0; t < nt; ++t) {
+    std::uint64_t share = 0;
+    for (std::size_t c = 0; c < bh::kChunksPerShare; ++c) {
+      share += chunk_work[t * bh::kChunksPerShare + c];
+    }
+    work[bh::kRegionWalk * nt + t] = share;
   }
 }
 

@@ -201,12 +201,15 @@ void self_pairs(const Bodies<T>& own, std::size_t lanes, double* sum_x, double* 
 
 // The tasks of the pair-once sum, in one global order: task k < P sums
 // stripe k over itself; task P + r M + u is match u of round r (M matches a
-// round; P stripes, one of them idle a round when P is odd). Task k runs on
-// thread k mod T, whatever T: every thread gets an even share, and no
-// barrier holds the threads between rounds. Instead a task waits until its
-// two stripes have finished their earlier tasks (done[s] counts them): the
+// round; P stripes, one of them idle a round when P is odd). Threads claim
+// the tasks in that order, each the next unclaimed one when it is free (a
+// fast thread takes more of them than a slow or busy one), and no barrier
+// holds the threads between rounds. Instead a task waits until its two
+// stripes have finished their earlier tasks (done[s] counts them): the
 // lowest unfinished task can always run, and each stripe's sums still take
-// their pairs in round order.
+// their pairs in round order, whichever thread runs them. The work is
+// counted by share, task k in share k mod T (what thread k mod T would run
+// if all ran alike): the same on any machine.
 class StripeSchedule {
  public:
   explicit StripeSchedule(std::size_t stripes)
@@ -263,13 +266,17 @@ void sum_by_stripes(const Bodies<T>& bodies, std::size_t lanes, int threads, dou
     return bodies.slice(first(k), first(k + 1) - first(k));
   };
   StripeSchedule schedule(stripes);
+  std::vector<std::uint64_t> task_pairs(schedule.tasks(), 0);
+  std::atomic<std::size_t> next_task{0};
+  std::size_t team = 1;
 #if defined(_OPENMP)
 #pragma omp parallel num_threads(threads)
 #endif
   {
     const auto [t, nt] = this_thread();
-    std::uint64_t pair_count = 0;
-    for (std::size_t k = t; k < schedule.tasks(); k += nt) {
+    if (t == 0) team = nt;
+    for (std::size_t k = next_task.fetch_add(1, std::memory_order_relaxed); k < schedule.tasks();
+         k = next_task.fetch_add(1, std::memory_order_relaxed)) {
       const StripeSchedule::Task task = schedule.task(k);
       if (task.a >= stripes || task.b >= stripes) continue;  // the idle match
       const std::size_t na = first(task.a + 1) - first(task.a);
@@ -277,19 +284,20 @@ void sum_by_stripes(const Bodies<T>& bodies, std::size_t lanes, int threads, dou
       if (task.a == task.b) {
         self_pairs(stripe(task.a), lanes, sum_x + first(task.a), sum_y + first(task.a), one_sided,
                    pairs);
-        pair_count += na * na;
+        task_pairs[k] = na * na;
       } else {
         schedule.wait(task.a, schedule.before(task.a, task.round));
         schedule.wait(task.b, schedule.before(task.b, task.round));
         pairs(stripe(task.a), stripe(task.b), sum_x + first(task.a), sum_y + first(task.a),
               sum_x + first(task.b), sum_y + first(task.b));
         schedule.finish(task.b);
-        pair_count += 2 * na * nb;
+        task_pairs[k] = 2 * na * nb;
       }
       schedule.finish(task.a);
     }
-    work[t] = pair_count;
   }
+  for (std::size_t s = 0; s < team; ++s) work[s] = 0;
+  for (std::size_t k = 0; k < task_pairs.size(); ++k) work[k % team] += task_pairs[k];
   (void)threads;
 }
 
@@ -297,7 +305,7 @@ void sum_by_stripes(const Bodies<T>& bodies, std::size_t lanes, int threads, dou
 // whole vectors of `lanes`, massless after n) into (sum_x, sum_y): each pair once from
 // kStripesForPairs stripes on (sum_by_stripes), else each target's sum over
 // all sources, blocks of `block` targets in static slices. work[t]: the
-// pairs thread t evaluated (each pair evaluated once counts 2).
+// pairs of thread t's share (each pair evaluated once counts 2).
 template <typename T, typename OneSided, typename Pairs>
 void direct_sums(Bodies<T> bodies, std::size_t n_pad, std::size_t lanes, std::size_t block,
                  int threads, double* sum_x, double* sum_y, std::uint64_t* work, OneSided one_sided,

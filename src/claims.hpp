@@ -14,28 +14,26 @@
 #include <cstdint>
 #include <memory>
 
-namespace calder::nbody::detail {
+namespace calder::detail {
 
 class Claims {
  public:
-  // Room for `shares` shares, all empty: before the threads start.
-  void reset(std::size_t shares) {
+  // `shares` shares of `chunks` chunks each, all unclaimed: before the
+  // threads start. A share whose thread does not come (a team smaller than
+  // asked for) is taken by the others.
+  void reset(std::size_t shares, std::uint32_t chunks) {
     if (shares > capacity_) {
       slots_ = std::make_unique<Slot[]>(shares);
       capacity_ = shares;
     }
     shares_ = shares;
-    for (std::size_t k = 0; k < shares; ++k) slots_[k].ends.store(0, std::memory_order_relaxed);
+    for (std::size_t k = 0; k < shares; ++k) {
+      slots_[k].ends.store(std::uint64_t{chunks} << 32, std::memory_order_relaxed);
+    }
   }
 
-  // Share k's chunks [0, chunks) open to claims: by share k's thread, before
-  // the team's wait that precedes the first next().
-  void open(std::size_t k, std::uint32_t chunks) {
-    slots_[k].ends.store(std::uint64_t{chunks} << 32, std::memory_order_relaxed);
-  }
-
-  // The next chunk for thread t: its own share's first unclaimed one, else
-  // another share's last. False when every chunk is claimed.
+  // The next chunk for thread t (< shares): its own share's first unclaimed
+  // one, else another share's last. False when every chunk is claimed.
   bool next(std::size_t t, std::size_t& share, std::uint32_t& chunk) {
     if (take(t, false, chunk)) {
       share = t;
@@ -77,4 +75,4 @@ class Claims {
   std::size_t shares_ = 0;
 };
 
-}  // namespace calder::nbody::detail
+}  // namespace calder::detail
