@@ -109,9 +109,10 @@ void assign_greedy(const std::vector<std::uint64_t>& sizes, std::size_t nt, std:
                    std::vector<std::uint32_t>& mine, std::vector<std::uint32_t>& by_size,
                    std::vector<std::uint64_t>& load);
 
-// An allocator whose resize leaves new numbers unset: for arrays that the
-// build writes in full, every call, in parallel (zeroing them first would be
-// a serial pass over memory that each thread then writes again).
+// An allocator whose resize leaves new numbers unset: for arrays that a
+// step writes in full, every call, in parallel (zeroing them first would be
+// a serial pass over memory that each thread then writes again, and would
+// put every page on the memory node of the thread that zeroed it).
 template <typename T>
 struct UnsetAllocator : std::allocator<T> {
   template <typename U>
@@ -310,10 +311,10 @@ struct BarnesHut::Workspace {
   BarnesHutStats stats;
 
   // Build.
-  std::vector<std::uint64_t> keys;   // Morton codes, sorted
-  std::vector<std::uint32_t> order;  // order[r]: the body of Morton rank r
-  std::vector<bh::Record> records;   // the bodies as the radix passes move them
-  std::vector<bh::Record> records_tmp;
+  bh::UnsetVector<std::uint64_t> keys;   // Morton codes, sorted
+  bh::UnsetVector<std::uint32_t> order;  // order[r]: the body of Morton rank r
+  bh::UnsetVector<bh::Record> records;   // the bodies as the radix passes move them
+  bh::UnsetVector<bh::Record> records_tmp;
   std::vector<std::size_t> radix_counts;   // per thread and bucket
   std::vector<bh::SortRange> sort_large;   // ranges the team splits by their next digit
   std::vector<bh::SortRange> sort_small;   // ranges one thread sorts (all that are not split)
@@ -331,10 +332,10 @@ struct BarnesHut::Workspace {
     std::vector<std::uint64_t> loads;
   };
   std::vector<SortScratch> sort_scratch;
-  std::vector<double> sx;  // bodies in Morton order
-  std::vector<double> sy;
-  std::vector<double> sm;
-  std::vector<float> sm32;  // scaled masses, float32
+  bh::UnsetVector<double> sx;  // bodies in Morton order
+  bh::UnsetVector<double> sy;
+  bh::UnsetVector<double> sm;
+  bh::UnsetVector<float> sm32;  // scaled masses, float32
   bh::Tree tree;
   std::vector<bh::Tree> parts;         // the subtrees, built in parallel
   std::vector<bh::Pending> pending;    // their roots
@@ -365,8 +366,8 @@ struct BarnesHut::Workspace {
   std::size_t target_block = 0;  // float64: targets that re-test the opened leaves (0: none)
 
   // Walk: sums in Morton order, and each thread's lists.
-  std::vector<double> sum_x;
-  std::vector<double> sum_y;
+  bh::UnsetVector<double> sum_x;
+  bh::UnsetVector<double> sum_y;
   struct alignas(64) Scratch {  // one a thread, on its own cache lines
     bh::Lists<double> lists64;
     bh::Lists<float> lists32;
