@@ -13,8 +13,32 @@
 #include <cstddef>
 #include <cstdint>
 #include <memory>
+#include <utility>
+
+#if defined(_OPENMP)
+#include <omp.h>
+#endif
 
 namespace calder::detail {
+
+// Chunks a share is cut into: enough that a slow thread's share can be
+// taken over in good part, few enough that claiming costs nothing.
+inline constexpr std::uint32_t kChunksPerShare = 8;
+
+// The calling thread's number in its OpenMP team (0 without OpenMP).
+inline std::size_t team_thread() {
+#if defined(_OPENMP)
+  return static_cast<std::size_t>(omp_get_thread_num());
+#else
+  return 0;
+#endif
+}
+
+// Chunk `chunk` of a share of `count` items from `first`: [begin, end).
+inline std::pair<std::size_t, std::size_t> chunk_of(std::size_t first, std::size_t count,
+                                                    std::uint32_t chunk) {
+  return {first + count * chunk / kChunksPerShare, first + count * (chunk + 1) / kChunksPerShare};
+}
 
 class Claims {
  public:

@@ -26,8 +26,6 @@ namespace {
 // Fewer bodies than this run on one thread: a batch of a few tiles takes
 // microseconds, comparable to waking a thread.
 constexpr std::size_t kMinBodiesPerThread = 2 * kTile;
-// Each thread's share of the tiles is cut into this many chunks (claims).
-constexpr std::uint32_t kChunksPerShare = 8;
 
 // The first of bodies [first, first + count) whose position or velocity is
 // not finite (an infinity or NaN: every exponent bit set), or first + count.
@@ -79,25 +77,20 @@ void run_in_shares(long long tiles, int threads, const RunTile& run_tile) {
   }
   thread_local calder::detail::Claims caller_claims;
   calder::detail::Claims& claims = caller_claims;
-  claims.reset(static_cast<std::size_t>(threads), kChunksPerShare);
+  claims.reset(static_cast<std::size_t>(threads), calder::detail::kChunksPerShare);
 #if defined(_OPENMP)
 #pragma omp parallel num_threads(threads) if (threads > 1)
 #endif
   {
-#if defined(_OPENMP)
-    const auto t = static_cast<std::size_t>(omp_get_thread_num());
-#else
-    const std::size_t t = 0;
-#endif
+    const std::size_t t = calder::detail::team_thread();
     std::size_t share = 0;
     std::uint32_t chunk = 0;
     while (claims.next(t, share, chunk)) {
-      const long long first = share_first(static_cast<long long>(share));
-      const long long count = share_first(static_cast<long long>(share) + 1) - first;
-      for (long long k = first + count * chunk / kChunksPerShare;
-           k < first + count * (chunk + 1) / kChunksPerShare; ++k) {
-        run_tile(k);
-      }
+      const auto k = static_cast<long long>(share);
+      const auto [begin, end] = calder::detail::chunk_of(
+          static_cast<std::size_t>(share_first(k)),
+          static_cast<std::size_t>(share_first(k + 1) - share_first(k)), chunk);
+      for (std::size_t tile = begin; tile < end; ++tile) run_tile(static_cast<long long>(tile));
     }
   }
 }

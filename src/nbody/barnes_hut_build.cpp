@@ -312,8 +312,8 @@ bh::Square BarnesHut::Workspace::combine_bounds(std::size_t nt) const {
 // The first radix pass, by the keys' top digit, after the Morton codes:
 // thread t codes and counts its slice (keys, in the caller's order until the
 // sort writes them over), then (the team's offsets known) writes its bodies
-// as records, with their keys, to their buckets in `records`. Stable: equal
-// digits stay in index order.
+// as records to their buckets in `records`. Stable: equal digits stay in
+// index order.
 void BarnesHut::Workspace::first_pass(std::span<const double> x, std::span<const double> y,
                                       std::span<const double> mass, const bh::Square& square,
                                       std::size_t t, std::size_t nt) {
@@ -324,8 +324,8 @@ void BarnesHut::Workspace::first_pass(std::span<const double> x, std::span<const
   const bh::MortonCoder code(square);
   std::size_t* counts = radix_counts.data() + t * bh::kRadixBuckets;
   std::fill(counts, counts + bh::kRadixBuckets, std::size_t{0});
-  // The keys in the caller's order, until sort_range writes them over (in
-  // their own loop: it vectorises).
+  // The keys in the caller's order, until sort_range writes them over: coded
+  // once, read by the count and by the writes.
   std::uint64_t* key = keys.data();
   for (std::size_t i = lo; i < hi; ++i) key[i] = code(x[i], y[i]);
   for (std::size_t i = lo; i < hi; ++i) ++counts[key[i] >> kShift];
@@ -339,9 +339,9 @@ void BarnesHut::Workspace::first_pass(std::span<const double> x, std::span<const
     list_ranges(bh::SortRange{0, static_cast<std::uint32_t>(n), bh::kRadixDigits, true}, ends,
                 false);
   }
-  // Each bucket's records gather in the thread's stage (in L1) and go out
-  // kStage at a time: whole cache lines, one page at a time, instead of one
-  // store in 256 far places a body.
+  // Each bucket's records gather in the thread's stage (in its L2) and go
+  // out kStage at a time: whole cache lines, one page at a time, instead of
+  // one store in 256 far places a body.
   bh::Record* out = records.data();
   bh::Record* stage = sort_scratch[t].stage.data();
   std::uint8_t* fill = sort_scratch[t].fill;

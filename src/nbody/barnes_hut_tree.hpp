@@ -58,9 +58,6 @@ inline constexpr std::size_t kParallelFrom = 2000;
 // tree does not depend on the number of threads): enough that each of 16 or
 // more threads gets several, of sizes that even out.
 inline constexpr std::size_t kSubtrees = 256;
-// The walk's share of each thread is cut into this many chunks; a thread
-// done with its own share takes the others' last unstarted chunks.
-inline constexpr std::size_t kChunksPerShare = 8;
 
 // The parallel regions of a step, whose per-thread work BarnesHutStats::work
 // reports (ThreadWork's region and unit).
@@ -77,7 +74,7 @@ enum Region : int {
 inline constexpr const char* kRegionNames[kRegions][2] = {
     {"bounds, Morton codes, first radix pass", "bodies"},
     {"further radix passes", "keys"},
-    {"sorted ranges and gather", "keys"},
+    {"sorted ranges, bodies in Morton order", "keys"},
     {"subtrees", "bodies"},
     {"subtree nodes and moments", "nodes"},
     {"walk", "interactions"},
@@ -265,7 +262,7 @@ struct MortonCoder {
       : x0(square.x0), y0(square.y0), to_cell(static_cast<double>(kCells) / square.side) {}
   std::uint32_t cell(double v, double origin) const {
     const double c = std::min((v - origin) * to_cell, static_cast<double>(kCells - 1));  // >= 0
-    return static_cast<std::uint32_t>(static_cast<std::int32_t>(c));  // vectorises
+    return static_cast<std::uint32_t>(static_cast<std::int32_t>(c));  // clamped first: no branch
   }
   std::uint64_t operator()(double x, double y) const {
     return spread(cell(x, x0)) | (spread(cell(y, y0)) << 1);
@@ -327,7 +324,7 @@ struct BarnesHut::Workspace {
     bh::UnsetVector<bh::Record> stage;     // the first pass's records on their way out
     std::uint8_t fill[bh::kRadixBuckets];  // how many of each bucket's are in stage
     std::uint8_t want[bh::kRadixBuckets];  // and how many it writes out next
-    std::vector<std::uint64_t> sizes;      // and for assign_greedy
+    std::vector<std::uint64_t> sizes;      // assign_greedy's
     std::vector<std::uint32_t> by_size;
     std::vector<std::uint64_t> loads;
   };

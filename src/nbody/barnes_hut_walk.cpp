@@ -24,10 +24,6 @@
 #include "barnes_hut_tree.hpp"
 #include "calder/detmath.hpp"
 
-#if defined(_OPENMP)
-#include <omp.h>
-#endif
-
 namespace calder::nbody {
 
 namespace {
@@ -136,17 +132,14 @@ void BarnesHut::Workspace::walk(const detail::LawParams& p, double scale, int th
   const bool history = body_cost.size() == n;
   body_cost.resize(n);
   const auto nt = static_cast<std::size_t>(bh::team_for(n, threads));
-  claims.reset(nt, static_cast<std::uint32_t>(bh::kChunksPerShare));
-  chunk_work.assign(nt * bh::kChunksPerShare, 0);
+  constexpr std::size_t kChunks = calder::detail::kChunksPerShare;
+  claims.reset(nt, kChunks);
+  chunk_work.assign(nt * kChunks, 0);
 #if defined(_OPENMP)
 #pragma omp parallel num_threads(static_cast <int>(nt))
 #endif
   {
-#if defined(_OPENMP)
-    const auto t = static_cast<std::size_t>(omp_get_thread_num());
-#else
-    const std::size_t t = 0;
-#endif
+    const std::size_t t = calder::detail::team_thread();
     Scratch& s = scratch[t];
     estimate_costs(units.size() * t / nt, units.size() * (t + 1) / nt, history);
 #if defined(_OPENMP)
@@ -156,12 +149,11 @@ void BarnesHut::Workspace::walk(const detail::LawParams& p, double scale, int th
     std::size_t share = 0;
     std::uint32_t chunk = 0;
     while (claims.next(t, share, chunk)) {
-      const std::size_t first = s.bounds[share];
-      const std::size_t count = s.bounds[share + 1] - first;
+      const auto [begin, end] =
+          calder::detail::chunk_of(s.bounds[share], s.bounds[share + 1] - s.bounds[share], chunk);
       const std::uint64_t before = s.interactions;
-      walk_units(first + count * chunk / bh::kChunksPerShare,
-                 first + count * (chunk + 1) / bh::kChunksPerShare, p, scale, s);
-      chunk_work[share * bh::kChunksPerShare + chunk] = s.interactions - before;
+      walk_units(begin, end, p, scale, s);
+      chunk_work[share * kChunks + chunk] = s.interactions - before;
     }
 #if defined(_OPENMP)
 #pragma omp barrier
@@ -170,9 +162,7 @@ void BarnesHut::Workspace::walk(const detail::LawParams& p, double scale, int th
   }
   for (std::size_t t = 0; t < nt; ++t) {
     std::uint64_t share = 0;
-    for (std::size_t c = 0; c < bh::kChunksPerShare; ++c) {
-      share += chunk_work[t * bh::kChunksPerShare + c];
-    }
+    for (std::size_t c = 0; c < kChunks; ++c) share += chunk_work[t * kChunks + c];
     work[bh::kRegionWalk * nt + t] = share;
   }
 }
