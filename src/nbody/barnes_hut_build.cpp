@@ -201,7 +201,7 @@ void BarnesHut::Workspace::build(std::span<const double> x, std::span<const doub
     }
     first_pass(x, y, mass, square, s.t, s.nt);
     mark(2);  // first_pass ends with the team's wait
-    const bh::MortonCoder code(square);
+    const bh::MortonCoder code(square.x0, square.y0, square.side);
     sort_keys(code, s.t, s.nt);
     sort_own_ranges(code, s.t);
 #if defined(_OPENMP)
@@ -321,13 +321,13 @@ void BarnesHut::Workspace::first_pass(std::span<const double> x, std::span<const
   const std::size_t n = x.size();
   const std::size_t lo = n * t / nt;
   const std::size_t hi = n * (t + 1) / nt;
-  const bh::MortonCoder code(square);
+  const bh::MortonCoder code(square.x0, square.y0, square.side);
   std::size_t* counts = radix_counts.data() + t * bh::kRadixBuckets;
   std::fill(counts, counts + bh::kRadixBuckets, std::size_t{0});
   // The keys in the caller's order, until sort_range writes them over: coded
   // once, read by the count and by the writes.
   std::uint64_t* key = keys.data();
-  for (std::size_t i = lo; i < hi; ++i) key[i] = code(x[i], y[i]);
+  bh::build_kernels().morton_keys(x.data() + lo, y.data() + lo, hi - lo, code, key + lo);
   for (std::size_t i = lo; i < hi; ++i) ++counts[key[i] >> kShift];
 #if defined(_OPENMP)
 #pragma omp barrier
@@ -514,9 +514,7 @@ void BarnesHut::Workspace::sort_range(const bh::MortonCoder& code, const bh::Sor
   packed.resize(length);
   spare.resize(length);
   buffers.counts.resize(std::size_t{1} << bh::kMaxBucketBits);
-  for (std::size_t i = 0; i < length; ++i) {
-    packed[i] = ((code(from[i].x, from[i].y) & key_mask) << place_bits) | i;
-  }
+  bh::build_kernels().packed_keys(from, length, code, key_mask, place_bits, packed.data());
   sort_in_cache(packed.data(), spare.data(), length, buffers.counts.data(), buffers.large, 0);
   const std::uint64_t place_mask = (std::uint64_t{1} << place_bits) - 1;
   for (std::size_t k = 0; k < length; ++k) {

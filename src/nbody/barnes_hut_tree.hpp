@@ -2,6 +2,8 @@
 // calder::nbody's Barnes-Hut internals, shared by its steps (one file each):
 //   barnes_hut_build.cpp    bounding square, Morton sort, the tree and its
 //                           moments (threads build subtrees of the Morton order)
+//   build_kernels.cpp       the build's loops that code every body, compiled
+//                           per instruction set (build_kernels.hpp)
 //   barnes_hut_moments.cpp  the moments as the multipole kernels read them
 //   barnes_hut_walk.cpp     per group (or unit of sibling groups): the tree
 //                           walk, the kernels' sums and the far field's
@@ -19,14 +21,13 @@
 #include <vector>
 
 #include "../claims.hpp"
+#include "build_kernels.hpp"
 #include "calder/nbody.hpp"
 #include "common.hpp"
 #include "kernels.hpp"
 
 namespace calder::nbody::bh {
 
-inline constexpr int kBits = 24;  // per axis: 48-bit Morton codes, at most 24 levels
-inline constexpr std::uint32_t kCells = std::uint32_t{1} << kBits;
 inline constexpr int kRadixBits = 8;
 inline constexpr std::size_t kRadixBuckets = std::size_t{1} << kRadixBits;
 inline constexpr int kRadixDigits = 2 * kBits / kRadixBits;
@@ -240,45 +241,6 @@ struct SortRange {
   std::uint32_t end = 0;
   int digits = 0;
   bool in_tmp = false;
-};
-
-// Interleaves the low 24 bits of v with zeros: bit k goes to bit 2k.
-inline std::uint64_t spread(std::uint32_t v) {
-  std::uint64_t x = v & (kCells - 1);
-  x = (x | (x << 16)) & 0x0000FFFF0000FFFFull;
-  x = (x | (x << 8)) & 0x00FF00FF00FF00FFull;
-  x = (x | (x << 4)) & 0x0F0F0F0F0F0F0F0Full;
-  x = (x | (x << 2)) & 0x3333333333333333ull;
-  x = (x | (x << 1)) & 0x5555555555555555ull;
-  return x;
-}
-
-// The Morton code of a point in the root square.
-struct MortonCoder {
-  double x0;
-  double y0;
-  double to_cell;
-  explicit MortonCoder(const bh::Square& square)
-      : x0(square.x0), y0(square.y0), to_cell(static_cast<double>(kCells) / square.side) {}
-  std::uint32_t cell(double v, double origin) const {
-    const double c = std::min((v - origin) * to_cell, static_cast<double>(kCells - 1));  // >= 0
-    return static_cast<std::uint32_t>(static_cast<std::int32_t>(c));  // clamped first: no branch
-  }
-  std::uint64_t operator()(double x, double y) const {
-    return spread(cell(x, x0)) | (spread(cell(y, y0)) << 1);
-  }
-};
-
-// A body as the sort moves it: its position, mass and index (32 bytes: two
-// to a cache line, none split between two). The radix passes carry the
-// bodies, so that writing them in Morton order reads a range's records in
-// cache instead of the caller's arrays at random; a key is worked out again
-// from x and y where a pass needs it (cheaper than moving it).
-struct alignas(32) Record {
-  double x;
-  double y;
-  double m;
-  std::uint32_t index;
 };
 
 // A group's bounding box and the origin of its float32 lists.

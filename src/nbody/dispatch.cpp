@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
-// calder::nbody: picks the kernel variant (kernels.cpp compiled per
-// instruction set) for the running CPU, once.
+// calder::nbody: picks the kernel variant (kernels.cpp, build_kernels.cpp
+// compiled per instruction set) for the running CPU, once.
 //
 // The variants are CMakeLists.txt's (CALDER_KERNEL_VARIANTS, generated):
 // "native" alone (the default: -march=native), or with CALDER_PORTABLE=ON
@@ -10,6 +10,7 @@
 #include <utility>
 
 #include "../kernel_level.hpp"
+#include "build_kernels.hpp"
 #include "calder_kernel_variants.hpp"
 #include "kernels.hpp"
 
@@ -37,3 +38,22 @@ const KernelTable& kernels() {
 }
 
 }  // namespace calder::nbody::detail
+
+namespace calder::nbody::bh {
+
+#define CALDER_BUILD_DECLARE(variant) const BuildKernels& build_kernels_##variant();
+CALDER_KERNEL_VARIANTS(CALDER_BUILD_DECLARE)
+
+#define CALDER_BUILD_CANDIDATE(variant) \
+  std::pair<std::string_view, const BuildKernels*>{#variant, &build_kernels_##variant()},
+
+const BuildKernels& build_kernels() {
+  static const BuildKernels& table = [] {
+    const std::pair<std::string_view, const BuildKernels*> compiled[] = {
+        CALDER_KERNEL_VARIANTS(CALDER_BUILD_CANDIDATE)};
+    return *calder::detail::best_variant(compiled);
+  }();
+  return table;
+}
+
+}  // namespace calder::nbody::bh

@@ -1,0 +1,72 @@
+// SPDX-License-Identifier: MIT
+// calder::nbody's Barnes-Hut internals: Morton codes, the records that the
+// build's sort moves, and the build's loops over every body that code them,
+// compiled once per instruction set (src/nbody/build_kernels.cpp) and chosen
+// at run time like the pair-sum kernels (dispatch.cpp). Every variant gives
+// the same codes: a code is a product, a clamp and integer work, exact.
+#pragma once
+
+#include <algorithm>
+#include <cstddef>
+#include <cstdint>
+
+namespace calder::nbody::bh {
+
+inline constexpr int kBits = 24;  // per axis: 48-bit Morton codes, at most 24 levels
+inline constexpr std::uint32_t kCells = std::uint32_t{1} << kBits;
+
+// Interleaves the low 24 bits of v with zeros: bit k goes to bit 2k.
+inline std::uint64_t spread(std::uint32_t v) {
+  std::uint64_t x = v & (kCells - 1);
+  x = (x | (x << 16)) & 0x0000FFFF0000FFFFull;
+  x = (x | (x << 8)) & 0x00FF00FF00FF00FFull;
+  x = (x | (x << 4)) & 0x0F0F0F0F0F0F0F0Full;
+  x = (x | (x << 2)) & 0x3333333333333333ull;
+  x = (x | (x << 1)) & 0x5555555555555555ull;
+  return x;
+}
+
+// The Morton code of a point in the root square [x0, x0 + side) x [y0, y0 + side).
+struct MortonCoder {
+  double x0;
+  double y0;
+  double to_cell;
+  MortonCoder(double x0_, double y0_, double side)
+      : x0(x0_), y0(y0_), to_cell(static_cast<double>(kCells) / side) {}
+  std::uint32_t cell(double v, double origin) const {
+    const double c = std::min((v - origin) * to_cell, static_cast<double>(kCells - 1));  // >= 0
+    return static_cast<std::uint32_t>(static_cast<std::int32_t>(c));  // clamped first: no branch
+  }
+  std::uint64_t operator()(double x, double y) const {
+    return spread(cell(x, x0)) | (spread(cell(y, y0)) << 1);
+  }
+};
+
+// A body as the sort moves it: its position, mass and index (32 bytes: two
+// to a cache line, none split between two). The radix passes carry the
+// bodies, so that writing them in Morton order reads a range's records in
+// cache instead of the caller's arrays at random; a key is worked out again
+// from x and y where a pass needs it (cheaper than moving it).
+struct alignas(32) Record {
+  double x;
+  double y;
+  double m;
+  std::uint32_t index;
+};
+
+// The build's loops over every body.
+struct BuildKernels {
+  // The Morton codes of (x, y)[0, n) to keys.
+  void (*morton_keys)(const double* x, const double* y, std::size_t n, const MortonCoder& code,
+                      std::uint64_t* keys);
+  // For the sort of one range of records: each record's code bits under
+  // key_mask shifted up by place_bits, its place i in the low bits, to
+  // packed[i].
+  void (*packed_keys)(const Record* records, std::size_t n, const MortonCoder& code,
+                      std::uint64_t key_mask, int place_bits, std::uint64_t* packed);
+};
+
+// The variant for the running CPU, chosen once (dispatch.cpp).
+const BuildKernels& build_kernels();
+
+}  // namespace calder::nbody::bh
