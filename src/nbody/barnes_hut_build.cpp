@@ -142,21 +142,17 @@ void sort_in_cache(std::uint64_t* values, std::uint64_t* spare, std::size_t leng
   const auto bucket = [&](std::uint64_t value) { return (value >> shift) & mask; };
   std::fill(counts, counts + buckets, 0u);
   for (std::size_t i = 0; i < length; ++i) ++counts[bucket(values[i])];
+  // Each bucket's start, and the large buckets listed as they pass.
+  std::vector<std::pair<std::uint32_t, std::uint32_t>>& mine = large[level];
+  mine.clear();
   std::uint32_t offset = 0;
   for (std::size_t b = 0; b < buckets; ++b) {
     const std::uint32_t here = counts[b];
+    if (here > kInsertion) mine.emplace_back(offset, offset + here);
     counts[b] = offset;
     offset += here;
   }
   for (std::size_t i = 0; i < length; ++i) spare[counts[bucket(values[i])]++] = values[i];
-  // counts[b]: the end of bucket b. The large ones, listed: counts is free.
-  std::vector<std::pair<std::uint32_t, std::uint32_t>>& mine = large[level];
-  mine.clear();
-  std::uint32_t begin = 0;
-  for (std::size_t b = 0; b < buckets; ++b) {
-    if (counts[b] - begin > kInsertion) mine.emplace_back(begin, counts[b]);
-    begin = counts[b];
-  }
   for (std::size_t k = 0; k < mine.size(); ++k) {  // mine may not grow (deeper levels' lists)
     const auto [first, end] = mine[k];
     sort_in_cache(spare + first, values + first, end - first, counts, large, level + 1);
@@ -597,6 +593,7 @@ void BarnesHut::Workspace::build_own_parts(std::size_t t) {
     part.nodes.reserve(2 * std::size_t{p.end - p.begin});
     part.moments.reserve(2 * std::size_t{p.end - p.begin});
     build_node(part, 0, p.begin, p.end, p.depth, false);
+    finish_part(part, mine);
     if (single) float_masses(p.begin, p.end);
     bodies += p.end - p.begin;
   }
@@ -691,9 +688,9 @@ void BarnesHut::Workspace::plan(std::uint32_t index, std::uint32_t begin, std::u
   }
 }
 // Builds node `index` of t over the bodies [begin, end) (end > begin) and its
-// subtree: split unless it has at most leaf_size bodies or they all share one
-// Morton code. The first node on each path with at most group_size bodies
-// (or a leaf) is a group.
+// subtree, their moments left to finish_part: split unless it has at most
+// leaf_size bodies or they all share one Morton code. The first node on each
+// path with at most group_size bodies (or a leaf) is a group.
 void BarnesHut::Workspace::build_node(bh::Tree& t, std::uint32_t index, std::uint32_t begin,
                                       std::uint32_t end, int tree_depth, bool in_group) const {
   const int level = level_of(begin, end);
@@ -720,76 +717,60 @@ void BarnesHut::Workspace::build_node(bh::Tree& t, std::uint32_t index, std::uin
         build_node(t, c++, bounds[q], bounds[q + 1], tree_depth + 1, in_group);
     }
   }
-  finish_node(t, index);
 }
 
-// Mass, centre of mass and moments of node `index` of t (from its bodies, or
-// from its children, which must be finished), and its opening radius.
+// Mass, centre of mass and moments of inner node `index` of t from its
+// children's (which must be finished), and its opening radius.
 void BarnesHut::Workspace::finish_node(bh::Tree& t, std::uint32_t index) const {
   bh::Node& node = t.nodes[index];
   bh::Moments mo;
-  if (node.children == 0) {
-    leaf_moments(node, mo);
-  } else {
-    merge_moments(t, node, mo);
-  }
+  merge_moments(t, node, mo);
   t.moments[index] = mo;
   set_opening_radius(node);
 }
 
-// A leaf: its centre of mass and moments from its bodies.
-void BarnesHut::Workspace::leaf_moments(bh::Node& node, bh::Moments& mo) const {
-  double mass = 0.0;
-  double mx = 0.0;
-  double my = 0.0;
-  for (std::uint32_t b = node.begin; b < node.end; ++b) {
-    mass += sm[b];
-    mx += sm[b] * sx[b];
-    my += sm[b] * sy[b];
+// The moments and opening radii of a part that build_node made: its leaves'
+// from their bodies, four leaves at a time (the build kernels), then its
+// inner nodes' from their children, last node first (a node's children come
+// after it).
+void BarnesHut::Workspace::finish_part(bh::Tree& t, SortScratch& buffers) const {
+  buffers.leaf_node.clear();
+  buffers.leaf_begin.clear();
+  buffers.leaf_end.clear();
+  for (std::size_t i = 0; i < t.nodes.size(); ++i) {
+    if (t.nodes[i].children != 0) continue;
+    buffers.leaf_node.push_back(static_cast<std::uint32_t>(i));
+    buffers.leaf_begin.push_back(t.nodes[i].begin);
+    buffers.leaf_end.push_back(t.nodes[i].end);
   }
-  mx /= mass;
-  my /= mass;
-  // The twelve sums two at a time: each lane's products in the order
-  // m dx dx ... dy (leftmost first), so each sum is what its own scalar loop
-  // gives, bit for bit.
-  using V2 = double __attribute__((vector_size(16)));
-  V2 qxx_qxy = {0.0, 0.0};
-  V2 qyy_oxxx = {0.0, 0.0};
-  V2 oxxy_oxyy = {0.0, 0.0};
-  V2 oyyy_hxxxx = {0.0, 0.0};
-  V2 hxxxy_hxxyy = {0.0, 0.0};
-  V2 hxyyy_hyyyy = {0.0, 0.0};
-  for (std::uint32_t b = node.begin; b < node.end; ++b) {
-    const double dx = sx[b] - mx;
-    const double dy = sy[b] - my;
-    const V2 m = {sm[b], sm[b]};
-    const V2 x_y = {dx, dy};
-    const V2 x_x = {dx, dx};
-    const V2 y_y = {dy, dy};
-    const V2 y_x = {dy, dx};
-    const V2 one_x = {1.0, dx};  // times 1: exact, ends the shorter product
-    qxx_qxy += m * x_x * x_y;
-    qyy_oxxx += m * y_x * y_x * one_x;
-    oxxy_oxyy += m * x_x * x_y * y_y;
-    oyyy_hxxxx += m * y_x * y_x * y_x * one_x;
-    hxxxy_hxxyy += m * x_x * x_x * x_y * y_y;
-    hxyyy_hyyyy += m * x_y * y_y * y_y * y_y;
+  const std::size_t leaves = buffers.leaf_node.size();
+  buffers.leaf_sums.resize(leaves * bh::kLeafSums);
+  bh::build_kernels().leaf_moments(sx.data(), sy.data(), sm.data(), buffers.leaf_begin.data(),
+                                   buffers.leaf_end.data(), leaves, buffers.leaf_sums.data());
+  for (std::size_t k = 0; k < leaves; ++k) {
+    const double* sums = buffers.leaf_sums.data() + bh::kLeafSums * k;
+    bh::Node& node = t.nodes[buffers.leaf_node[k]];
+    bh::Moments& mo = t.moments[buffers.leaf_node[k]];
+    mo.mass = sums[bh::kLeafMass];
+    mo.qxx = sums[bh::kLeafQxx];
+    mo.qxy = sums[bh::kLeafQxy];
+    mo.qyy = sums[bh::kLeafQyy];
+    mo.oxxx = sums[bh::kLeafOxxx];
+    mo.oxxy = sums[bh::kLeafOxxy];
+    mo.oxyy = sums[bh::kLeafOxyy];
+    mo.oyyy = sums[bh::kLeafOyyy];
+    mo.hxxxx = sums[bh::kLeafHxxxx];
+    mo.hxxxy = sums[bh::kLeafHxxxy];
+    mo.hxxyy = sums[bh::kLeafHxxyy];
+    mo.hxyyy = sums[bh::kLeafHxyyy];
+    mo.hyyyy = sums[bh::kLeafHyyyy];
+    node.mx = sums[bh::kLeafMx];
+    node.my = sums[bh::kLeafMy];
+    set_opening_radius(node);
   }
-  mo.qxx = qxx_qxy[0];
-  mo.qxy = qxx_qxy[1];
-  mo.qyy = qyy_oxxx[0];
-  mo.oxxx = qyy_oxxx[1];
-  mo.oxxy = oxxy_oxyy[0];
-  mo.oxyy = oxxy_oxyy[1];
-  mo.oyyy = oyyy_hxxxx[0];
-  mo.hxxxx = oyyy_hxxxx[1];
-  mo.hxxxy = hxxxy_hxxyy[0];
-  mo.hxxyy = hxxxy_hxxyy[1];
-  mo.hxyyy = hxyyy_hyyyy[0];
-  mo.hyyyy = hxyyy_hyyyy[1];
-  mo.mass = mass;
-  node.mx = mx;
-  node.my = my;
+  for (std::size_t i = t.nodes.size(); i-- > 0;) {
+    if (t.nodes[i].children != 0) finish_node(t, static_cast<std::uint32_t>(i));
+  }
 }
 
 // An inner node: its centre of mass and moments from its children's.
@@ -842,7 +823,7 @@ void BarnesHut::Workspace::merge_moments(const bh::Tree& t, bh::Node& node, bh::
 void BarnesHut::Workspace::set_opening_radius(bh::Node& node) const {
   const int level = level_of(node.begin, node.end);
   const std::uint64_t key = keys[node.begin];
-  const double size = std::ldexp(side, -level);
+  const double size = side * (1.0 / static_cast<double>(std::uint32_t{1} << level));  // exact
   const double cx = x0 + (static_cast<double>(compact(key) >> (kBits - level)) + 0.5) * size;
   const double cy = y0 + (static_cast<double>(compact(key >> 1) >> (kBits - level)) + 0.5) * size;
   const double delta = std::sqrt((node.mx - cx) * (node.mx - cx) + (node.my - cy) * (node.my - cy));

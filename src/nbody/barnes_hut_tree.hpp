@@ -286,7 +286,11 @@ struct BarnesHut::Workspace {
     bh::UnsetVector<bh::Record> stage;     // the first pass's records on their way out
     std::uint8_t fill[bh::kRadixBuckets];  // how many of each bucket's are in stage
     std::uint8_t want[bh::kRadixBuckets];  // and how many it writes out next
-    std::vector<std::uint64_t> sizes;      // assign_greedy's
+    std::vector<std::uint32_t> leaf_node;  // a part's leaves (finish_part)
+    std::vector<std::uint32_t> leaf_begin;
+    std::vector<std::uint32_t> leaf_end;
+    std::vector<double> leaf_sums;
+    std::vector<std::uint64_t> sizes;  // assign_greedy's
     std::vector<std::uint32_t> by_size;
     std::vector<std::uint64_t> loads;
   };
@@ -380,7 +384,7 @@ struct BarnesHut::Workspace {
   void build_node(bh::Tree& t, std::uint32_t index, std::uint32_t begin, std::uint32_t end,
                   int tree_depth, bool in_group) const;
   void finish_node(bh::Tree& t, std::uint32_t index) const;
-  void leaf_moments(bh::Node& node, bh::Moments& mo) const;
+  void finish_part(bh::Tree& t, SortScratch& buffers) const;
   static void merge_moments(const bh::Tree& t, bh::Node& node, bh::Moments& mo);
   void set_opening_radius(bh::Node& node) const;
 

@@ -1,9 +1,10 @@
 // SPDX-License-Identifier: MIT
 // calder::nbody's Barnes-Hut internals: Morton codes, the records that the
-// build's sort moves, and the build's loops over every body that code them,
-// compiled once per instruction set (src/nbody/build_kernels.cpp) and chosen
-// at run time like the pair-sum kernels (dispatch.cpp). Every variant gives
-// the same codes: a code is a product, a clamp and integer work, exact.
+// build's sort moves, and the build's loops over every body (Morton codes,
+// leaves' moments), compiled once per instruction set
+// (src/nbody/build_kernels.cpp) and chosen at run time like the pair-sum
+// kernels (dispatch.cpp). Every variant gives the same bits: a code is exact
+// work, and each moment the same products summed in the same order.
 #pragma once
 
 #include <algorithm>
@@ -54,6 +55,26 @@ struct alignas(32) Record {
   std::uint32_t index;
 };
 
+// A leaf's sums, in the order of BuildKernels::leaf_moments' output.
+enum LeafSum : int {
+  kLeafMass,
+  kLeafMx,  // centre of mass
+  kLeafMy,
+  kLeafQxx,  // about the centre of mass: sum m dx dx, sum m dx dy, sum m dy dy
+  kLeafQxy,
+  kLeafQyy,
+  kLeafOxxx,  // sum m dx dx dx, ...
+  kLeafOxxy,
+  kLeafOxyy,
+  kLeafOyyy,
+  kLeafHxxxx,  // sum m dx dx dx dx, ...
+  kLeafHxxxy,
+  kLeafHxxyy,
+  kLeafHxyyy,
+  kLeafHyyyy,
+  kLeafSums,
+};
+
 // The build's loops over every body.
 struct BuildKernels {
   // The Morton codes of (x, y)[0, n) to keys.
@@ -64,6 +85,14 @@ struct BuildKernels {
   // packed[i].
   void (*packed_keys)(const Record* records, std::size_t n, const MortonCoder& code,
                       std::uint64_t key_mask, int place_bits, std::uint64_t* packed);
+  // For each leaf k < count, bodies [begin[k], end[k]) of (x, y, m) (at
+  // least one): its mass, centre of mass and moments, to sums[kLeafSums k +
+  // LeafSum]. Each sum runs over the leaf's bodies in order, each product
+  // from the mass rightwards (m dx dx dy): the bits of the plain loops, in
+  // every variant.
+  void (*leaf_moments)(const double* x, const double* y, const double* m,
+                       const std::uint32_t* begin, const std::uint32_t* end, std::size_t count,
+                       double* sums);
 };
 
 // The variant for the running CPU, chosen once (dispatch.cpp).
