@@ -1,8 +1,9 @@
 // SPDX-License-Identifier: MIT
 // Barnes-Hut, the build: bounding square; 48-bit Morton codes (24 bits per
-// axis); their radix sort (8-bit digits: the threads split the bodies, each
-// carried as a 32-byte record, by their top digits until the ranges fit in
-// cache, then sort ranges on their own and write them out in Morton order;
+// axis); their radix sort (8-bit digits, the first 10 bits wide for many
+// bodies: the threads split the bodies, each carried as a 32-byte record, by
+// their top digits until the ranges fit in cache, then sort ranges on their
+// own and write them out in Morton order;
 // the order is unique, so the same for any thread count); the tree,
 // depth first, each node the smallest quadtree cell holding its bodies; mass,
 // centre of mass and second to fourth moments bottom up (parallel axis
@@ -244,9 +245,10 @@ void BarnesHut::Workspace::size_buffers(std::size_t n) {
   sy.resize(n);
   sm.resize(n);
   if (single) sm32.resize(n);
-  radix_counts.resize(nt * bh::kRadixBuckets);
+  first_bits = n >= bh::kWideFirstFrom ? bh::kWideFirstBits : bh::kRadixBits;
+  radix_counts.resize(nt * bh::kFirstBuckets);
   if (sort_scratch.size() < nt) sort_scratch.resize(nt);
-  for (std::size_t t = 0; t < nt; ++t) sort_scratch[t].stage.resize(bh::kRadixBuckets * bh::kStage);
+  for (std::size_t t = 0; t < nt; ++t) sort_scratch[t].stage.resize(bh::kFirstBuckets * bh::kStage);
   own_ranges.resize(nt);
   own_parts.resize(nt);
   partial.assign(5 * nt, 0.0);
@@ -313,31 +315,32 @@ bh::Square BarnesHut::Workspace::combine_bounds(std::size_t nt) const {
 void BarnesHut::Workspace::first_pass(std::span<const double> x, std::span<const double> y,
                                       std::span<const double> mass, const bh::Square& square,
                                       std::size_t t, std::size_t nt) {
-  constexpr int kShift = (bh::kRadixDigits - 1) * bh::kRadixBits;
+  const int shift = 2 * kBits - first_bits;
+  const std::size_t buckets = std::size_t{1} << first_bits;
   const std::size_t n = x.size();
   const std::size_t lo = n * t / nt;
   const std::size_t hi = n * (t + 1) / nt;
   const bh::MortonCoder code(square.x0, square.y0, square.side);
-  std::size_t* counts = radix_counts.data() + t * bh::kRadixBuckets;
-  std::fill(counts, counts + bh::kRadixBuckets, std::size_t{0});
+  std::size_t* counts = radix_counts.data() + t * bh::kFirstBuckets;
+  std::fill(counts, counts + buckets, std::size_t{0});
   // The keys in the caller's order, until sort_range writes them over: coded
   // once, read by the count and by the writes.
   std::uint64_t* key = keys.data();
   bh::build_kernels().morton_keys(x.data() + lo, y.data() + lo, hi - lo, code, key + lo);
-  for (std::size_t i = lo; i < hi; ++i) ++counts[key[i] >> kShift];
+  for (std::size_t i = lo; i < hi; ++i) ++counts[key[i] >> shift];
 #if defined(_OPENMP)
 #pragma omp barrier
 #endif
-  std::size_t mine[bh::kRadixBuckets];
-  std::size_t ends[bh::kRadixBuckets];
-  bucket_offsets(0, t, nt, mine, ends);
+  std::size_t mine[bh::kFirstBuckets];
+  std::size_t ends[bh::kFirstBuckets];
+  bucket_offsets(0, t, nt, buckets, mine, ends);
   if (t == 0) {  // the whole range, as if it came from records_tmp: now in records
-    list_ranges(bh::SortRange{0, static_cast<std::uint32_t>(n), bh::kRadixDigits, true}, ends,
+    list_ranges(bh::SortRange{0, static_cast<std::uint32_t>(n), 2 * kBits, true}, first_bits, ends,
                 false);
   }
   // Each bucket's records gather in the thread's stage (in its L2) and go
   // out kStage at a time: whole cache lines, one page at a time, instead of
-  // one store in 256 far places a body.
+  // one store in 256 (or more) far places a body.
   bh::Record* out = records.data();
   bh::Record* stage = sort_scratch[t].stage.data();
   std::uint8_t* fill = sort_scratch[t].fill;
@@ -345,12 +348,12 @@ void BarnesHut::Workspace::first_pass(std::span<const double> x, std::span<const
   // of lines about to be written whole); a bucket that starts a line's
   // second half writes its first record on its own.
   std::uint8_t* want = sort_scratch[t].want;
-  for (std::size_t b = 0; b < bh::kRadixBuckets; ++b) {
+  for (std::size_t b = 0; b < buckets; ++b) {
     fill[b] = 0;
     want[b] = starts_line(out + mine[b]) ? bh::kStage : 1;
   }
   for (std::size_t i = lo; i < hi; ++i) {
-    const std::size_t b = key[i] >> kShift;
+    const std::size_t b = key[i] >> shift;
     bh::Record* slot = stage + b * bh::kStage;
     slot[fill[b]] = bh::Record{x[i], y[i], mass[i], static_cast<std::uint32_t>(i)};
     if (++fill[b] == want[b]) {
@@ -364,7 +367,7 @@ void BarnesHut::Workspace::first_pass(std::span<const double> x, std::span<const
       want[b] = bh::kStage;
     }
   }
-  for (std::size_t b = 0; b < bh::kRadixBuckets; ++b) {
+  for (std::size_t b = 0; b < buckets; ++b) {
     const bh::Record* slot = stage + b * bh::kStage;
     for (std::size_t k = 0; k < fill[b]; ++k) out[mine[b] + k] = slot[k];
   }
@@ -379,14 +382,15 @@ void BarnesHut::Workspace::first_pass(std::span<const double> x, std::span<const
 // `begin` (exclusive prefix sums of the team's counts, bucket-major then
 // thread) and each bucket's end; returns the largest bucket's size.
 std::size_t BarnesHut::Workspace::bucket_offsets(std::size_t begin, std::size_t t, std::size_t nt,
-                                                 std::size_t* mine, std::size_t* ends) const {
+                                                 std::size_t buckets, std::size_t* mine,
+                                                 std::size_t* ends) const {
   std::size_t offset = begin;
   std::size_t largest = 0;
-  for (std::size_t b = 0; b < bh::kRadixBuckets; ++b) {
+  for (std::size_t b = 0; b < buckets; ++b) {
     const std::size_t first = offset;
     for (std::size_t u = 0; u < nt; ++u) {
       if (u == t) mine[b] = offset;
-      offset += radix_counts[u * bh::kRadixBuckets + b];
+      offset += radix_counts[u * bh::kFirstBuckets + b];
     }
     ends[b] = offset;
     largest = std::max(largest, offset - first);
@@ -411,7 +415,7 @@ void BarnesHut::Workspace::sort_own_ranges(const bh::MortonCoder& code, std::siz
 // radix sort: the team splits a range by its next digit (a stable counting
 // pass, thread slices in order) while it is larger than team_split_from,
 // then the ranges go to threads (assign_greedy), each sorted on its own by
-// its remaining digits (sort_own_ranges, sort_range). The sorted order is
+// its remaining bits (sort_own_ranges, sort_range). The sorted order is
 // unique (key, then index), so it does not depend on the number of threads
 // or on how the work was split.
 void BarnesHut::Workspace::sort_keys(const bh::MortonCoder& code, std::size_t t, std::size_t nt) {
@@ -435,24 +439,27 @@ void BarnesHut::Workspace::sort_keys(const bh::MortonCoder& code, std::size_t t,
 // by one thread) or done.
 void BarnesHut::Workspace::split_range(const bh::MortonCoder& code, const bh::SortRange& range,
                                        std::size_t t, std::size_t nt) {
-  constexpr std::size_t kMask = bh::kRadixBuckets - 1;
-  const int shift = (range.digits - 1) * bh::kRadixBits;
+  const int width = std::min(bh::kRadixBits, range.bits);
+  const int shift = range.bits - width;
+  const std::size_t buckets = std::size_t{1} << width;
+  const std::size_t mask = buckets - 1;
   const std::size_t length = range.end - range.begin;
   const std::size_t lo = range.begin + length * t / nt;
   const std::size_t hi = range.begin + length * (t + 1) / nt;
   const bh::Record* from = range.in_tmp ? records_tmp.data() : records.data();
   bh::Record* to = range.in_tmp ? records.data() : records_tmp.data();
-  std::size_t* counts = radix_counts.data() + t * bh::kRadixBuckets;
-  std::fill(counts, counts + bh::kRadixBuckets, std::size_t{0});
-  const auto digit = [&](const bh::Record& r) { return (code(r.x, r.y) >> shift) & kMask; };
+  std::size_t* counts = radix_counts.data() + t * bh::kFirstBuckets;
+  std::fill(counts, counts + buckets, std::size_t{0});
+  const auto digit = [&](const bh::Record& r) { return (code(r.x, r.y) >> shift) & mask; };
   for (std::size_t i = lo; i < hi; ++i) ++counts[digit(from[i])];
 #if defined(_OPENMP)
 #pragma omp barrier
 #endif
   std::size_t mine[bh::kRadixBuckets];
   std::size_t ends[bh::kRadixBuckets];
-  const bool skip = bucket_offsets(range.begin, t, nt, mine, ends) == length;  // nothing moves
-  if (t == 0) list_ranges(range, ends, skip);
+  const bool skip =
+      bucket_offsets(range.begin, t, nt, buckets, mine, ends) == length;  // nothing moves
+  if (t == 0) list_ranges(range, width, ends, skip);
   if (!skip) {
     for (std::size_t i = lo; i < hi; ++i) to[mine[digit(from[i])]++] = from[i];
   }
@@ -461,29 +468,30 @@ void BarnesHut::Workspace::split_range(const bh::MortonCoder& code, const bh::So
 #endif
 }
 
-// The sub-ranges of `range` after a pass (bucket b ends at ends[b]), as
-// large (split again) or small (sorted, or left in place, by one thread,
-// which then gathers its bodies): every key ends in one small range.
-void BarnesHut::Workspace::list_ranges(const bh::SortRange& range, const std::size_t* ends,
-                                       bool skip) {
+// The sub-ranges of `range` after a pass by a digit of `width` bits (bucket
+// b ends at ends[b]), as large (split again) or small (sorted, or left in
+// place, by one thread, which then writes its bodies out): every key ends in
+// one small range.
+void BarnesHut::Workspace::list_ranges(const bh::SortRange& range, int width,
+                                       const std::size_t* ends, bool skip) {
   const bool moved_to_tmp = skip ? range.in_tmp : !range.in_tmp;
   std::size_t offset = range.begin;
-  for (std::size_t b = 0; b < bh::kRadixBuckets; ++b) {
+  for (std::size_t b = 0; b < std::size_t{1} << width; ++b) {
     const bh::SortRange sub{static_cast<std::uint32_t>(offset), static_cast<std::uint32_t>(ends[b]),
-                            range.digits - 1, moved_to_tmp};
+                            range.bits - width, moved_to_tmp};
     offset = ends[b];
     if (sub.end == sub.begin) continue;
-    const bool large = sub.end - sub.begin > team_split_from && sub.digits > 0;
+    const bool large = sub.end - sub.begin > team_split_from && sub.bits > 0;
     (large ? sort_large : sort_small).push_back(sub);
   }
 }
 
-// One thread sorts `range` by its remaining digits and writes its bodies in
-// Morton order. Each key's remaining digits and the record's place in the
+// One thread sorts `range` by its remaining bits and writes its bodies in
+// Morton order. Each key's remaining bits and the record's place in the
 // range are packed in one integer (distinct, and in index order for equal
 // keys: the passes are stable), sorted in the thread's buffers; the records
 // are then read in that order, from cache, and each key put together again
-// from the range's shared digits and its packed ones.
+// from the range's shared bits and its packed ones.
 void BarnesHut::Workspace::sort_range(const bh::MortonCoder& code, const bh::SortRange& range,
                                       SortScratch& buffers) {
   const std::size_t length = range.end - range.begin;
@@ -495,15 +503,15 @@ void BarnesHut::Workspace::sort_range(const bh::MortonCoder& code, const bh::Sor
     sy[k] = r.y;
     sm[k] = r.m;
   };
-  if (range.digits == 0 || length == 1) {  // sorted already, one key
+  if (range.bits == 0 || length == 1) {  // sorted already, one key
     const std::uint64_t key = code(from[0].x, from[0].y);
     for (std::size_t k = 0; k < length; ++k) put(range.begin + k, key, from[k]);
     return;
   }
   // Key bits + place bits <= 40 + 16: a range here has at most
-  // kSortInCache bodies (or no key digits left).
+  // kSortInCache bodies (or no key bits left).
   const int place_bits = 64 - leading_zeros(length - 1);  // length >= 2
-  const std::uint64_t key_mask = (std::uint64_t{1} << (range.digits * bh::kRadixBits)) - 1;
+  const std::uint64_t key_mask = (std::uint64_t{1} << range.bits) - 1;
   const std::uint64_t shared = code(from[0].x, from[0].y) & ~key_mask;
   std::vector<std::uint64_t>& packed = buffers.values[0];
   std::vector<std::uint64_t>& spare = buffers.values[1];

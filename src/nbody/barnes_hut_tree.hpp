@@ -28,9 +28,15 @@
 
 namespace calder::nbody::bh {
 
-inline constexpr int kRadixBits = 8;
+inline constexpr int kRadixBits = 8;  // a radix pass's digit (the last may be narrower)
 inline constexpr std::size_t kRadixBuckets = std::size_t{1} << kRadixBits;
-inline constexpr int kRadixDigits = 2 * kBits / kRadixBits;
+// The first pass's digit: kRadixBits, or from kWideFirstFrom bodies on
+// kWideFirstBits, so that the ranges it leaves stay small enough to sort in a
+// core's cache (a wider digit spreads the pass's writes over more places).
+// The sorted order is the same whatever the digits.
+inline constexpr int kWideFirstBits = 10;
+inline constexpr std::size_t kWideFirstFrom = std::size_t{1} << 21;
+inline constexpr std::size_t kFirstBuckets = std::size_t{1} << kWideFirstBits;  // at most
 // Ranges of the sort up to this many bodies are sorted by one thread: their
 // keys packed with their places (8 bytes a body, two arrays, and the
 // counts: 1.25 MB, in a core's cache) and the bodies then read in that
@@ -234,12 +240,12 @@ struct Pending {
   int depth = 0;
 };
 
-// Keys [begin, end) of the sort, which share their digits above the lowest
-// `digits`; their records in records_tmp or in records.
+// Keys [begin, end) of the sort, which share their bits above the lowest
+// `bits`; their records in records_tmp or in records.
 struct SortRange {
   std::uint32_t begin = 0;
   std::uint32_t end = 0;
-  int digits = 0;
+  int bits = 0;
   bool in_tmp = false;
 };
 
@@ -274,7 +280,8 @@ struct BarnesHut::Workspace {
   bh::UnsetVector<std::uint32_t> order;  // order[r]: the body of Morton rank r
   bh::UnsetVector<bh::Record> records;   // the bodies as the radix passes move them
   bh::UnsetVector<bh::Record> records_tmp;
-  std::vector<std::size_t> radix_counts;   // per thread and bucket
+  std::vector<std::size_t> radix_counts;   // per thread (kFirstBuckets each) and bucket
+  int first_bits = bh::kRadixBits;         // the first pass's digit
   std::vector<bh::SortRange> sort_large;   // ranges the team splits by their next digit
   std::vector<bh::SortRange> sort_small;   // ranges one thread sorts (all that are not split)
   std::size_t team_split_from = 0;         // ranges larger than this are split by the team
@@ -284,8 +291,8 @@ struct BarnesHut::Workspace {
     std::vector<std::pair<std::uint32_t, std::uint32_t>>
         large[bh::kSortLevels];            // buckets to sort again
     bh::UnsetVector<bh::Record> stage;     // the first pass's records on their way out
-    std::uint8_t fill[bh::kRadixBuckets];  // how many of each bucket's are in stage
-    std::uint8_t want[bh::kRadixBuckets];  // and how many it writes out next
+    std::uint8_t fill[bh::kFirstBuckets];  // how many of each bucket's are in stage
+    std::uint8_t want[bh::kFirstBuckets];  // and how many it writes out next
     std::vector<std::uint32_t> leaf_node;  // a part's leaves (finish_part)
     std::vector<std::uint32_t> leaf_begin;
     std::vector<std::uint32_t> leaf_end;
@@ -363,12 +370,12 @@ struct BarnesHut::Workspace {
   void first_pass(std::span<const double> x, std::span<const double> y,
                   std::span<const double> mass, const bh::Square& square, std::size_t t,
                   std::size_t nt);
-  std::size_t bucket_offsets(std::size_t begin, std::size_t t, std::size_t nt, std::size_t* mine,
-                             std::size_t* ends) const;
+  std::size_t bucket_offsets(std::size_t begin, std::size_t t, std::size_t nt, std::size_t buckets,
+                             std::size_t* mine, std::size_t* ends) const;
   void sort_keys(const bh::MortonCoder& code, std::size_t t, std::size_t nt);
   void split_range(const bh::MortonCoder& code, const bh::SortRange& range, std::size_t t,
                    std::size_t nt);
-  void list_ranges(const bh::SortRange& range, const std::size_t* ends, bool skip);
+  void list_ranges(const bh::SortRange& range, int width, const std::size_t* ends, bool skip);
   void sort_range(const bh::MortonCoder& code, const bh::SortRange& range, SortScratch& buffers);
   void sort_own_ranges(const bh::MortonCoder& code, std::size_t t);
   void plan_tree(double G);
