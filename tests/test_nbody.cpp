@@ -20,7 +20,8 @@
 #include <thread>
 #include <vector>
 
-#include "../src/claims.hpp"  // the walk's shares of work, claimed in chunks
+#include "../src/claims.hpp"               // the walk's shares of work, claimed in chunks
+#include "../src/nbody/build_kernels.hpp"  // the build's loops, per instruction set
 #include "calder/error.hpp"
 #include "calder/fields.hpp"
 #include "calder/forces.hpp"
@@ -785,6 +786,126 @@ TEST(NbodyWork, BarnesHutRegionsAreSharedEvenlyAmongSixteenThreads) {
     EXPECT_EQ(interactions, stats.interactions);
     std::string where;
     EXPECT_LE(worst_imbalance(stats.work, 16, where), 0.05) << "N " << s.size() << ": " << where;
+  }
+}
+
+// The build kernels (the variant this CPU runs) against the plain loops
+// their comments promise: the same bits.
+namespace {
+
+bool same_bits(double a, double b) {
+  std::uint64_t ua = 0;
+  std::uint64_t ub = 0;
+  std::memcpy(&ua, &a, sizeof a);
+  std::memcpy(&ub, &b, sizeof b);
+  return ua == ub;
+}
+
+// One leaf's sums as plain loops: each product from the mass rightwards.
+std::vector<double> plain_leaf_sums(const double* x, const double* y, const double* m,
+                                    std::size_t n) {
+  double mass = 0.0;
+  double mx = 0.0;
+  double my = 0.0;
+  for (std::size_t b = 0; b < n; ++b) {
+    mass += m[b];
+    mx += m[b] * x[b];
+    my += m[b] * y[b];
+  }
+  mx /= mass;
+  my /= mass;
+  std::vector<double> sums(nb::bh::kLeafSums, 0.0);
+  sums[nb::bh::kLeafMass] = mass;
+  sums[nb::bh::kLeafMx] = mx;
+  sums[nb::bh::kLeafMy] = my;
+  for (std::size_t b = 0; b < n; ++b) {
+    const double dx = x[b] - mx;
+    const double dy = y[b] - my;
+    sums[nb::bh::kLeafQxx] += m[b] * dx * dx;
+    sums[nb::bh::kLeafQxy] += m[b] * dx * dy;
+    sums[nb::bh::kLeafQyy] += m[b] * dy * dy;
+    sums[nb::bh::kLeafOxxx] += m[b] * dx * dx * dx;
+    sums[nb::bh::kLeafOxxy] += m[b] * dx * dx * dy;
+    sums[nb::bh::kLeafOxyy] += m[b] * dx * dy * dy;
+    sums[nb::bh::kLeafOyyy] += m[b] * dy * dy * dy;
+    sums[nb::bh::kLeafHxxxx] += m[b] * dx * dx * dx * dx;
+    sums[nb::bh::kLeafHxxxy] += m[b] * dx * dx * dx * dy;
+    sums[nb::bh::kLeafHxxyy] += m[b] * dx * dx * dy * dy;
+    sums[nb::bh::kLeafHxyyy] += m[b] * dx * dy * dy * dy;
+    sums[nb::bh::kLeafHyyyy] += m[b] * dy * dy * dy * dy;
+  }
+  return sums;
+}
+
+}  // namespace
+
+// Leaves of 1 to 70 bodies (longer than the kernel's copies of 32, and 37
+// of them: the last four-leaf batch is partly empty), one of coincident
+// bodies, masses from 0.1 to 10.
+TEST(NbodyBuildKernels, LeafMomentsAreThePlainLoopsBitForBit) {
+  std::mt19937_64 rng(2718);
+  std::uniform_real_distribution<double> u(-50.0, 50.0);
+  std::uniform_real_distribution<double> mass(0.1, 10.0);
+  std::vector<std::uint32_t> begin;
+  std::vector<std::uint32_t> end;
+  std::vector<double> x;
+  std::vector<double> y;
+  std::vector<double> m;
+  for (std::uint32_t leaf = 0; leaf < 37; ++leaf) {
+    const std::uint32_t count = leaf == 5 ? 40 : 1 + (leaf * 23) % 70;
+    begin.push_back(static_cast<std::uint32_t>(x.size()));
+    for (std::uint32_t k = 0; k < count; ++k) {
+      x.push_back(leaf == 5 ? 3.25 : u(rng));  // leaf 5: all at one point
+      y.push_back(leaf == 5 ? -7.5 : u(rng));
+      m.push_back(mass(rng));
+    }
+    end.push_back(static_cast<std::uint32_t>(x.size()));
+  }
+  std::vector<double> sums(begin.size() * nb::bh::kLeafSums);
+  nb::bh::build_kernels().leaf_moments(x.data(), y.data(), m.data(), begin.data(), end.data(),
+                                       begin.size(), sums.data());
+  for (std::size_t leaf = 0; leaf < begin.size(); ++leaf) {
+    const std::vector<double> want =
+        plain_leaf_sums(x.data() + begin[leaf], y.data() + begin[leaf], m.data() + begin[leaf],
+                        end[leaf] - begin[leaf]);
+    for (std::size_t k = 0; k < nb::bh::kLeafSums; ++k) {
+      EXPECT_TRUE(same_bits(sums[leaf * nb::bh::kLeafSums + k], want[k]))
+          << "leaf " << leaf << " sum " << k << ": " << sums[leaf * nb::bh::kLeafSums + k] << " vs "
+          << want[k];
+    }
+  }
+}
+
+// Morton codes: the kernel's against the coder's, over the square, on its
+// far edges (clamped to the last cell) and at its corner; packed keys keep
+// the masked bits above the place.
+TEST(NbodyBuildKernels, MortonKeysAreTheCoders) {
+  const nb::bh::MortonCoder code(-4.0, 10.0, 8.0);
+  std::mt19937_64 rng(31);
+  std::uniform_real_distribution<double> ux(-4.0, 4.0);
+  std::uniform_real_distribution<double> uy(10.0, 18.0);
+  std::vector<double> x{-4.0, 4.0, 4.0, -4.0, 0.0};
+  std::vector<double> y{10.0, 18.0, 10.0, 18.0, 14.0};
+  for (int i = 0; i < 1000; ++i) {
+    x.push_back(ux(rng));
+    y.push_back(uy(rng));
+  }
+  std::vector<std::uint64_t> keys(x.size());
+  nb::bh::build_kernels().morton_keys(x.data(), y.data(), x.size(), code, keys.data());
+  std::vector<nb::bh::Record> records(x.size());
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    EXPECT_EQ(keys[i], code(x[i], y[i])) << "point " << i;
+    records[i] = nb::bh::Record{x[i], y[i], 1.0, static_cast<std::uint32_t>(i)};
+  }
+  EXPECT_EQ(keys[0], 0u);                                             // the lower corner
+  EXPECT_EQ(keys[1], (std::uint64_t{1} << (2 * nb::bh::kBits)) - 1);  // the far one: last cell
+  constexpr std::uint64_t kMask = (std::uint64_t{1} << 30) - 1;
+  constexpr int kPlaceBits = 11;
+  std::vector<std::uint64_t> packed(x.size());
+  nb::bh::build_kernels().packed_keys(records.data(), records.size(), code, kMask, kPlaceBits,
+                                      packed.data());
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    EXPECT_EQ(packed[i], ((keys[i] & kMask) << kPlaceBits) | i) << "record " << i;
   }
 }
 

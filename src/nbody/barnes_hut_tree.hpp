@@ -53,7 +53,8 @@ inline constexpr std::size_t kMinTeamSplit = 256;
 inline constexpr int kMaxBucketBits = 16;
 inline constexpr int kSortLevels = 10;
 // The first radix pass writes each bucket's records this many at a time
-// (256 bytes: four cache lines; 64 KB of staging a thread, in its L2).
+// (256 bytes: four cache lines; 64 KB of staging a thread, 256 KB with the
+// wide first digit, in its L2).
 inline constexpr std::size_t kStage = 8;
 // Per node, as the multipole kernels read them (kernels.hpp): m, 3 Q (3),
 // 1.5 tr Q, 7.5 O (4), 1.5 P (2), 17.5 H (5), 7.5 tr H (3), 1.875 tr tr H.
