@@ -353,7 +353,7 @@ void BarnesHut::Workspace::first_pass(std::span<const double> x, std::span<const
     want[b] = starts_line(out + mine[b]) ? bh::kStage : 1;
   }
   for (std::size_t i = lo; i < hi; ++i) {
-    const std::size_t b = key[i] >> shift;
+    const auto b = static_cast<std::size_t>(key[i] >> shift);
     bh::Record* slot = stage + b * bh::kStage;
     slot[fill[b]] = bh::Record{x[i], y[i], mass[i], static_cast<std::uint32_t>(i)};
     if (++fill[b] == want[b]) {
