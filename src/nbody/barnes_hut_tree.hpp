@@ -2,8 +2,8 @@
 // calder::nbody's Barnes-Hut internals, shared by its steps (one file each):
 //   barnes_hut_build.cpp    bounding square, Morton sort, the tree and its
 //                           moments (threads build subtrees of the Morton order)
-//   build_kernels.cpp       the build's loops that code every body, compiled
-//                           per instruction set (build_kernels.hpp)
+//   build_kernels.cpp       the build's loops over every body (Morton codes,
+//                           leaves' moments), compiled per instruction set
 //   barnes_hut_moments.cpp  the moments as the multipole kernels read them
 //   barnes_hut_walk.cpp     per group (or unit of sibling groups): the tree
 //                           walk, the kernels' sums and the far field's
