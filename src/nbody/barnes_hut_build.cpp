@@ -3,13 +3,11 @@
 // axis); their radix sort (8-bit digits, the first 10 bits wide for many
 // bodies: the threads split the bodies, each carried as a 32-byte record, by
 // their top digits until the ranges fit in cache, then sort ranges on their
-// own and write them out in Morton order;
-// the order is unique, so the same for any thread count); the tree,
-// depth first, each node the smallest quadtree cell holding its bodies; mass,
-// centre of mass and second to fourth moments bottom up (parallel axis
-// theorem). The top of the tree is split serially down to about kSubtrees
-// subtrees, which threads build on their own and which are then appended in
-// a fixed order: the same tree for any number of threads.
+// own and write them out in Morton order; the order is unique, so the same
+// for any thread count); the tree, depth first, each node the smallest quadtree cell holding its
+// bodies; mass, centre of mass and second to fourth moments bottom up (parallel axis theorem). The
+// top of the tree is split serially down to about kSubtrees subtrees, which threads build on their
+// own and which are then appended in a fixed order: the same tree for any number of threads.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -196,9 +194,9 @@ void BarnesHut::Workspace::build(std::span<const double> x, std::span<const doub
       side = square.side;
       max_mass = square.max_mass;
     }
-    first_pass(x, y, mass, square, s.t, s.nt);
-    mark(2);  // first_pass ends with the team's wait
     const bh::MortonCoder code(square.x0, square.y0, square.side);
+    first_pass(x, y, mass, code, s.t, s.nt);
+    mark(2);  // first_pass ends with the team's wait
     sort_keys(code, s.t, s.nt);
     sort_own_ranges(code, s.t);
 #if defined(_OPENMP)
@@ -313,14 +311,13 @@ bh::Square BarnesHut::Workspace::combine_bounds(std::size_t nt) const {
 // as records to their buckets in `records`. Stable: equal digits stay in
 // index order.
 void BarnesHut::Workspace::first_pass(std::span<const double> x, std::span<const double> y,
-                                      std::span<const double> mass, const bh::Square& square,
+                                      std::span<const double> mass, const bh::MortonCoder& code,
                                       std::size_t t, std::size_t nt) {
   const int shift = 2 * kBits - first_bits;
   const std::size_t buckets = std::size_t{1} << first_bits;
   const std::size_t n = x.size();
   const std::size_t lo = n * t / nt;
   const std::size_t hi = n * (t + 1) / nt;
-  const bh::MortonCoder code(square.x0, square.y0, square.side);
   std::size_t* counts = radix_counts.data() + t * bh::kFirstBuckets;
   std::fill(counts, counts + buckets, std::size_t{0});
   // The keys in the caller's order, until sort_range writes them over: coded
@@ -834,7 +831,7 @@ void BarnesHut::Workspace::merge_moments(const bh::Tree& t, bh::Node& node, bh::
 void BarnesHut::Workspace::set_opening_radius(bh::Node& node) const {
   const int level = level_of(node.begin, node.end);
   const std::uint64_t key = keys[node.begin];
-  const double size = side * (1.0 / static_cast<double>(std::uint32_t{1} << level));  // exact
+  const double size = std::ldexp(side, -level);
   const double cx = x0 + (static_cast<double>(compact(key) >> (kBits - level)) + 0.5) * size;
   const double cy = y0 + (static_cast<double>(compact(key >> 1) >> (kBits - level)) + 0.5) * size;
   const double delta = std::sqrt((node.mx - cx) * (node.mx - cx) + (node.my - cy) * (node.my - cy));

@@ -369,7 +369,7 @@ struct BarnesHut::Workspace {
              std::size_t t, std::size_t nt);
   bh::Square combine_bounds(std::size_t nt) const;
   void first_pass(std::span<const double> x, std::span<const double> y,
-                  std::span<const double> mass, const bh::Square& square, std::size_t t,
+                  std::span<const double> mass, const bh::MortonCoder& code, std::size_t t,
                   std::size_t nt);
   std::size_t bucket_offsets(std::size_t begin, std::size_t t, std::size_t nt, std::size_t buckets,
                              std::size_t* mine, std::size_t* ends) const;
