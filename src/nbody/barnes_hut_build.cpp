@@ -4,10 +4,15 @@
 // bodies: the threads split the bodies, each carried as a 32-byte record, by
 // their top digits until the ranges fit in cache, then sort ranges on their
 // own and write them out in Morton order; the order is unique, so the same
-// for any thread count); the tree, depth first, each node the smallest quadtree cell holding its
-// bodies; mass, centre of mass and second to fourth moments bottom up (parallel axis theorem). The
-// top of the tree is split serially down to about kSubtrees subtrees, which threads build on their
-// own and which are then appended in a fixed order: the same tree for any number of threads.
+// for any thread count); the tree, depth first, each node the smallest
+// quadtree cell holding its bodies; mass, centre of mass and second to
+// fourth moments bottom up (parallel axis theorem). A sort range of more
+// than group_size bodies is a subtree, which the thread that sorted it
+// builds at once, from keys and bodies still in its cache; the top of the
+// tree is then split serially down to those and to about kSubtrees
+// subtrees for what is left, which threads build on their own; all are
+// appended in a fixed order. The tree is unique, so the same for any number
+// of threads, however its building was split.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -163,9 +168,10 @@ void sort_in_cache(std::uint64_t* values, std::uint64_t* spare, std::size_t leng
 
 // The whole build, one parallel region: the bounding square; Morton codes
 // and the team's radix passes over static slices; the sort's ranges, each
-// sorted and gathered by one thread; the top of the tree (serially, small);
-// subtrees by their threads; their nodes placed and their kernel moments
-// written by the same threads; the top finished. Ranges and subtrees go to
+// sorted and gathered by one thread, which then builds its subtree; the
+// top of the tree (serially, small); the subtrees left by their threads;
+// their nodes placed and their kernel moments written by the same threads;
+// the top finished. Ranges and subtrees go to
 // threads by assign_greedy, which depends on sizes and the thread count only.
 void BarnesHut::Workspace::build(std::span<const double> x, std::span<const double> y,
                                  std::span<const double> mass, int threads, double G) {
@@ -193,6 +199,8 @@ void BarnesHut::Workspace::build(std::span<const double> x, std::span<const doub
       y0 = square.y0;
       side = square.side;
       max_mass = square.max_mass;
+      // The float32 masses of subtrees built with their sort range need it.
+      frame = detail::float_frame(x0 + side * 0.5, y0 + side * 0.5, side * 0.5, max_mass, G);
     }
     const bh::MortonCoder code(square.x0, square.y0, square.side);
     first_pass(x, y, mass, code, s.t, s.nt);
@@ -206,7 +214,7 @@ void BarnesHut::Workspace::build(std::span<const double> x, std::span<const doub
 #if defined(_OPENMP)
 #pragma omp single
 #endif
-    plan_tree(G);
+    plan_tree();
     mark(4);
     build_own_parts(s.t);
 #if defined(_OPENMP)
@@ -399,12 +407,40 @@ std::size_t BarnesHut::Workspace::bucket_offsets(std::size_t begin, std::size_t 
 // (keys, order, sx, sy, sm).
 void BarnesHut::Workspace::sort_own_ranges(const bh::MortonCoder& code, std::size_t t) {
   std::uint64_t done = 0;
+  std::uint64_t built = 0;
   for (const std::uint32_t r : own_ranges[t]) {
     const bh::SortRange& range = sort_small[r];
     sort_range(code, range, sort_scratch[t]);
     done += range.end - range.begin;
+    if (builds_with_sort(range)) {
+      build_part(range_parts[r], range.begin, range.end, 0, sort_scratch[t]);
+      built += range.end - range.begin;
+    }
   }
-  work[bh::kRegionRanges * static_cast<std::size_t>(team) + t] = done;
+  const auto nt = static_cast<std::size_t>(team);
+  work[bh::kRegionRanges * nt + t] = done;
+  work[bh::kRegionSubtrees * nt + t] = built;
+}
+
+// Whether the thread that sorts `range` builds its subtree straight after,
+// from the keys and bodies it has just written: the range is a quadtree
+// cell's bodies (its digits are whole levels), so with more than
+// group_size of them they are one node's, every node above it split and
+// none of them a group, whatever else the tree holds.
+bool BarnesHut::Workspace::builds_with_sort(const bh::SortRange& range) const {
+  return range.end - range.begin > std::max(group_size, leaf_size);
+}
+
+// The subtree of bodies [begin, end) into `part` (numbered from 0, its root
+// at `depth`): nodes, moments and opening radii, and float32 masses.
+void BarnesHut::Workspace::build_part(bh::Tree& part, std::uint32_t begin, std::uint32_t end,
+                                      int depth, SortScratch& buffers) {
+  part.reset();
+  part.nodes.reserve(2 * std::size_t{end - begin});
+  part.moments.reserve(2 * std::size_t{end - begin});
+  build_node(part, 0, begin, end, depth, false);
+  finish_part(part, buffers);
+  if (single) float_masses(begin, end);
 }
 
 // Sorts the bodies by key, equal keys in index order, called by every
@@ -481,6 +517,7 @@ void BarnesHut::Workspace::list_ranges(const bh::SortRange& range, int width,
     const bool large = sub.end - sub.begin > team_split_from && sub.bits > 0;
     (large ? sort_large : sort_small).push_back(sub);
   }
+  if (range_parts.size() < sort_small.size()) range_parts.resize(sort_small.size());
 }
 
 // One thread sorts `range` by its remaining bits and writes its bodies in
@@ -562,13 +599,20 @@ std::uint32_t BarnesHut::Workspace::split(bh::Tree& t, std::uint32_t index, std:
   return children;
 }
 
-// The frame of the float32 kernels, the top of the tree (serially: nodes
-// with more than `cutoff` bodies are split here, the others left in
-// `pending`) and the subtrees' threads. The cutoff depends on the bodies
-// only: the tree is the same for any number of threads, and there is never
-// a group or a leaf above the subtrees.
-void BarnesHut::Workspace::plan_tree(double G) {
-  frame = detail::float_frame(x0 + side * 0.5, y0 + side * 0.5, side * 0.5, max_mass, G);
+// The top of the tree (serially, plan), the subtrees built with their sort
+// ranges swapped in, and the sizes of those left to build. Where the top
+// ends depends on the sort's ranges, and so on the number of threads, but
+// not the tree: each node is the smallest cell holding its bodies, split
+// while it has more than leaf_size, wherever it was built; and there is
+// never a group or a leaf above the subtrees.
+void BarnesHut::Workspace::plan_tree() {
+  with_sort.clear();
+  for (std::size_t r = 0; r < sort_small.size(); ++r) {
+    if (builds_with_sort(sort_small[r])) {
+      with_sort.emplace_back(sort_small[r].begin, static_cast<std::uint32_t>(r));
+    }
+  }
+  std::sort(with_sort.begin(), with_sort.end());
   const auto n = static_cast<std::uint32_t>(keys.size());
   tree.reset();
   tree.nodes.reserve(2 * std::size_t{n});  // every inner node has >= 2 children: < 2n nodes
@@ -580,7 +624,12 @@ void BarnesHut::Workspace::plan_tree(double G) {
   if (parts.size() < pending.size()) parts.resize(pending.size());
   item_sizes.resize(pending.size());
   for (std::size_t k = 0; k < pending.size(); ++k) {
-    item_sizes[k] = pending[k].end - pending[k].begin;
+    const bh::Pending& p = pending[k];
+    item_sizes[k] = p.range == bh::kNoRange ? p.end - p.begin : 0;
+    if (p.range != bh::kNoRange) {  // built: its storage swapped in, its depth from here
+      std::swap(parts[k], range_parts[p.range]);
+      parts[k].depth += p.depth;
+    }
   }
 }
 
@@ -593,19 +642,15 @@ void BarnesHut::Workspace::build_own_parts(std::size_t t) {
   std::uint64_t bodies = 0;
   for (const std::uint32_t k : own_parts[t]) {
     const bh::Pending& p = pending[k];
-    bh::Tree& part = parts[k];
-    part.reset();
-    part.nodes.reserve(2 * std::size_t{p.end - p.begin});
-    part.moments.reserve(2 * std::size_t{p.end - p.begin});
+    if (p.range != bh::kNoRange) continue;  // built with its sort range
     // The splits' binary searches read the keys at scattered places, one
     // miss after another: fetch the part's keys first, all at once.
     for (std::uint32_t b = p.begin; b < p.end; b += 8) __builtin_prefetch(keys.data() + b);
-    build_node(part, 0, p.begin, p.end, p.depth, false);
-    finish_part(part, mine);
-    if (single) float_masses(p.begin, p.end);
+    build_part(parts[k], p.begin, p.end, p.depth, mine);
     bodies += p.end - p.begin;
   }
-  work[bh::kRegionSubtrees * static_cast<std::size_t>(team) + t] = bodies;
+  // With the subtrees this thread built with its sort ranges.
+  work[bh::kRegionSubtrees * static_cast<std::size_t>(team) + t] += bodies;
 }
 
 // Where the parts' nodes go: part k's node c to its root's slot (c = 0) or
@@ -678,13 +723,20 @@ void BarnesHut::Workspace::finish_top() {
   }
 }
 
-// Splits the top of the tree, serially, down to nodes of at most `cutoff`
-// bodies (or of one Morton code), which go to `pending`.
+// Splits the top of the tree, serially, down to the subtrees built with
+// their sort ranges and to nodes of at most `cutoff` bodies (or of one
+// Morton code) that hold none of those, which all go to `pending`.
 void BarnesHut::Workspace::plan(std::uint32_t index, std::uint32_t begin, std::uint32_t end,
                                 int tree_depth, std::size_t cutoff) {
+  bool inside = false;
+  const std::uint32_t range = range_with_sort(begin, end, inside);
+  if (range != bh::kNoRange) {
+    pending.push_back(bh::Pending{index, begin, end, tree_depth, range});
+    return;
+  }
   const int level = level_of(begin, end);
-  if (end - begin <= cutoff || level == kBits) {
-    pending.push_back(bh::Pending{index, begin, end, tree_depth});
+  if ((end - begin <= cutoff && !inside) || level == kBits) {
+    pending.push_back(bh::Pending{index, begin, end, tree_depth, bh::kNoRange});
     return;
   }
   top.push_back(index);
@@ -695,6 +747,19 @@ void BarnesHut::Workspace::plan(std::uint32_t index, std::uint32_t begin, std::u
     if (bounds[q + 1] > bounds[q]) plan(c++, bounds[q], bounds[q + 1], tree_depth + 1, cutoff);
   }
 }
+// The range of with_sort whose bodies are [begin, end), or kNoRange; inside:
+// whether one lies within [begin, end) (ranges and nodes are cells' bodies:
+// nested or apart).
+std::uint32_t BarnesHut::Workspace::range_with_sort(std::uint32_t begin, std::uint32_t end,
+                                                    bool& inside) const {
+  const auto it = std::lower_bound(with_sort.begin(), with_sort.end(),
+                                   std::pair<std::uint32_t, std::uint32_t>{begin, 0});
+  inside = it != with_sort.end() && it->first < end;
+  if (!inside || it->first != begin) return bh::kNoRange;
+  const bh::SortRange& range = sort_small[it->second];
+  return range.end == end ? it->second : bh::kNoRange;
+}
+
 // Builds node `index` of t over the bodies [begin, end) (end > begin) and its
 // subtree, their moments left to finish_part: split unless it has at most
 // leaf_size bodies or they all share one Morton code. The first node on each

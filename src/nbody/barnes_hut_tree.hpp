@@ -73,7 +73,7 @@ enum Region : int {
   kRegionBodies,    // bounding box, Morton codes, the first radix pass: bodies
   kRegionSplit,     // the team's further radix passes: keys
   kRegionRanges,    // ranges sorted by one thread, bodies gathered: keys
-  kRegionSubtrees,  // subtrees built: bodies
+  kRegionSubtrees,  // subtrees built, with their sort ranges or after: bodies
   kRegionNodes,     // subtrees' nodes placed, kernel moments: nodes
   kRegionWalk,      // tree walks and sums: interactions
   kRegionScatter,   // sums back to the caller's order: bodies
@@ -99,9 +99,9 @@ struct BuildPhaseName {
 inline constexpr BuildPhaseName kBuildPhaseNames[kBuildPhases] = {
     {"bounding square", false},
     {"Morton codes, first radix pass", false},
-    {"sort's ranges, bodies in Morton order", false},
+    {"sort's ranges, bodies in Morton order, their subtrees", false},
     {"top of the tree", true},
-    {"subtrees", false},
+    {"subtrees left", false},
     {"subtrees placed", true},
     {"nodes and kernel moments", false},
     {"top moments", true},
@@ -232,13 +232,17 @@ struct alignas(64) Tree {
   }
 };
 
-// A subtree left for the parallel build: its root's index in the whole tree,
-// its bodies and its depth.
+inline constexpr std::uint32_t kNoRange = ~std::uint32_t{0};
+
+// A subtree of the whole tree: its root's index there, its bodies and its
+// depth, and the sort range whose thread built it as it sorted it
+// (kNoRange: left for the parallel build).
 struct Pending {
   std::uint32_t index = 0;
   std::uint32_t begin = 0;
   std::uint32_t end = 0;
   int depth = 0;
+  std::uint32_t range = kNoRange;
 };
 
 // Keys [begin, end) of the sort, which share their bits above the lowest
@@ -308,10 +312,15 @@ struct BarnesHut::Workspace {
   bh::UnsetVector<double> sm;
   bh::UnsetVector<float> sm32;  // scaled masses, float32
   bh::Tree tree;
-  std::vector<bh::Tree> parts;         // the subtrees, built in parallel
+  std::vector<bh::Tree> parts;         // the subtrees, in tree order
   std::vector<bh::Pending> pending;    // their roots
   std::vector<std::uint32_t> top;      // the nodes above them, in creation order
   std::vector<std::size_t> part_base;  // where each part's nodes go in the tree
+  // range_parts[r]: the subtree of sort_small[r] (when builds_with_sort),
+  // built by the thread that sorted it, then swapped into parts; with_sort:
+  // those ranges' (begin, r), by begin.
+  std::vector<bh::Tree> range_parts;
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> with_sort;
   // Thread t's sort ranges and subtrees (assign_greedy), and its scratch.
   std::vector<std::vector<std::uint32_t>> own_ranges;
   std::vector<std::vector<std::uint32_t>> own_parts;
@@ -379,7 +388,10 @@ struct BarnesHut::Workspace {
   void list_ranges(const bh::SortRange& range, int width, const std::size_t* ends, bool skip);
   void sort_range(const bh::MortonCoder& code, const bh::SortRange& range, SortScratch& buffers);
   void sort_own_ranges(const bh::MortonCoder& code, std::size_t t);
-  void plan_tree(double G);
+  bool builds_with_sort(const bh::SortRange& range) const;
+  void build_part(bh::Tree& part, std::uint32_t begin, std::uint32_t end, int depth,
+                  SortScratch& buffers);
+  void plan_tree();
   void build_own_parts(std::size_t t);
   void place_parts();
   void copy_own_parts(std::size_t t);
@@ -389,6 +401,7 @@ struct BarnesHut::Workspace {
                       int level, std::uint32_t (&bounds)[5]) const;
   void plan(std::uint32_t index, std::uint32_t begin, std::uint32_t end, int tree_depth,
             std::size_t cutoff);
+  std::uint32_t range_with_sort(std::uint32_t begin, std::uint32_t end, bool& inside) const;
   void build_node(bh::Tree& t, std::uint32_t index, std::uint32_t begin, std::uint32_t end,
                   int tree_depth, bool in_group) const;
   void finish_node(bh::Tree& t, std::uint32_t index) const;
