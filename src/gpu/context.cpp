@@ -10,9 +10,42 @@
 
 #include "calder/error.hpp"
 
+#if defined(__SANITIZE_ADDRESS__)
+#define CALDER_GPU_LEAK_CHECKS 1
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer) || __has_feature(leak_sanitizer)
+#define CALDER_GPU_LEAK_CHECKS 1
+#endif
+#endif
+#if defined(CALDER_GPU_LEAK_CHECKS)
+#include <sanitizer/lsan_interface.h>
+#endif
+
 namespace calder::gpu {
 
 namespace {
+
+// What a Vulkan driver allocates while the loader asks it for its devices,
+// not counted as leaks by a leak-checking build. A driver may keep blocks
+// from a one-time set-up for as long as it is loaded, and the loader unloads
+// it with the last instance, which loses them (Mesa's llvmpipe on an AMD
+// EPYC: two blocks of 128 bytes, reported from an unloaded library). They
+// are the driver's, not calder's.
+class DriverAllocations {
+ public:
+  DriverAllocations() {
+#if defined(CALDER_GPU_LEAK_CHECKS)
+    __lsan_disable();
+#endif
+  }
+  ~DriverAllocations() {
+#if defined(CALDER_GPU_LEAK_CHECKS)
+    __lsan_enable();
+#endif
+  }
+  DriverAllocations(const DriverAllocations&) = delete;
+  DriverAllocations& operator=(const DriverAllocations&) = delete;
+};
 
 std::string version_text(std::uint32_t v) {
   return std::to_string(VK_API_VERSION_MAJOR(v)) + "." + std::to_string(VK_API_VERSION_MINOR(v)) +
@@ -103,6 +136,7 @@ VkInstance make_instance(std::string* why) {
 }
 
 std::vector<VkPhysicalDevice> physical_devices(VkInstance instance) {
+  const DriverAllocations drivers;
   std::uint32_t count = 0;
   check(vkEnumeratePhysicalDevices(instance, &count, nullptr), "vkEnumeratePhysicalDevices");
   std::vector<VkPhysicalDevice> out(count);
