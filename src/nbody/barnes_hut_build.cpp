@@ -171,8 +171,8 @@ void sort_in_cache(std::uint64_t* values, std::uint64_t* spare, std::size_t leng
 // sorted and gathered by one thread, which then builds its subtree; the
 // top of the tree (serially, small); the subtrees left by their threads;
 // their nodes placed and their kernel moments written by the same threads;
-// the top finished. Ranges and subtrees go to
-// threads by assign_greedy, which depends on sizes and the thread count only.
+// the top finished. Ranges and subtrees go to threads by assign_greedy,
+// which depends on sizes and the thread count only.
 void BarnesHut::Workspace::build(std::span<const double> x, std::span<const double> y,
                                  std::span<const double> mass, int threads, double G) {
   const std::size_t n = x.size();
@@ -625,11 +625,13 @@ void BarnesHut::Workspace::plan_tree() {
   item_sizes.resize(pending.size());
   for (std::size_t k = 0; k < pending.size(); ++k) {
     const bh::Pending& p = pending[k];
-    item_sizes[k] = p.range == bh::kNoRange ? p.end - p.begin : 0;
-    if (p.range != bh::kNoRange) {  // built: its storage swapped in, its depth from here
-      std::swap(parts[k], range_parts[p.range]);
-      parts[k].depth += p.depth;
+    if (p.range == bh::kNoRange) {
+      item_sizes[k] = p.end - p.begin;
+      continue;
     }
+    item_sizes[k] = 0;  // built: its storage swapped in, its depth from here
+    std::swap(parts[k], range_parts[p.range]);
+    parts[k].depth += p.depth;
   }
 }
 
@@ -747,6 +749,7 @@ void BarnesHut::Workspace::plan(std::uint32_t index, std::uint32_t begin, std::u
     if (bounds[q + 1] > bounds[q]) plan(c++, bounds[q], bounds[q + 1], tree_depth + 1, cutoff);
   }
 }
+
 // The range of with_sort whose bodies are [begin, end), or kNoRange; inside:
 // whether one lies within [begin, end) (ranges and nodes are cells' bodies:
 // nested or apart).
