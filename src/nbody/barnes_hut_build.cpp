@@ -120,6 +120,32 @@ inline void insertion_sort(const std::uint64_t* from, std::uint64_t* values, std
   }
 }
 
+// counts[0, n) (n a power of two) to their exclusive prefix sums: each
+// bucket's start. Four at a time where the processor has SSE2 (the buckets
+// outnumber the values that a sort counts).
+inline void starts_from_counts(std::uint32_t* counts, std::size_t n) {
+#if defined(__SSE2__)
+  if (n >= 4) {
+    __m128i carry = _mm_setzero_si128();
+    for (std::size_t b = 0; b < n; b += 4) {
+      auto* at = reinterpret_cast<__m128i*>(counts + b);
+      const __m128i c = _mm_loadu_si128(at);
+      __m128i sum = _mm_add_epi32(c, _mm_slli_si128(c, 4));  // inclusive sums of the four
+      sum = _mm_add_epi32(sum, _mm_slli_si128(sum, 8));
+      _mm_storeu_si128(at, _mm_add_epi32(_mm_slli_si128(sum, 4), carry));
+      carry = _mm_add_epi32(carry, _mm_shuffle_epi32(sum, 0xFF));
+    }
+    return;
+  }
+#endif
+  std::uint32_t offset = 0;
+  for (std::size_t b = 0; b < n; ++b) {
+    const std::uint32_t here = counts[b];
+    counts[b] = offset;
+    offset += here;
+  }
+}
+
 // Sorts `length` distinct values in place, with `spare` (as long) and the
 // thread's `counts` (2^kMaxBucketBits) and lists of large buckets (one a
 // level). One counting pass into spare by the bits just below the values'
@@ -145,17 +171,19 @@ void sort_in_cache(std::uint64_t* values, std::uint64_t* spare, std::size_t leng
   const std::uint64_t mask = buckets - 1;
   const auto bucket = [&](std::uint64_t value) { return (value >> shift) & mask; };
   std::fill(counts, counts + buckets, 0u);
-  for (std::size_t i = 0; i < length; ++i) ++counts[bucket(values[i])];
-  // Each bucket's start, and the large buckets listed as they pass.
+  std::uint32_t most = 0;
+  for (std::size_t i = 0; i < length; ++i) most = std::max(most, ++counts[bucket(values[i])]);
+  // The large buckets, where there are any; then each bucket's start.
   std::vector<std::pair<std::uint32_t, std::uint32_t>>& mine = large[level];
   mine.clear();
-  std::uint32_t offset = 0;
-  for (std::size_t b = 0; b < buckets; ++b) {
-    const std::uint32_t here = counts[b];
-    if (here > kInsertion) mine.emplace_back(offset, offset + here);
-    counts[b] = offset;
-    offset += here;
+  if (most > kInsertion) {
+    std::uint32_t offset = 0;
+    for (std::size_t b = 0; b < buckets; ++b) {
+      if (counts[b] > kInsertion) mine.emplace_back(offset, offset + counts[b]);
+      offset += counts[b];
+    }
   }
+  starts_from_counts(counts, buckets);
   for (std::size_t i = 0; i < length; ++i) spare[counts[bucket(values[i])]++] = values[i];
   for (std::size_t k = 0; k < mine.size(); ++k) {  // mine may not grow (deeper levels' lists)
     const auto [first, end] = mine[k];
@@ -247,9 +275,11 @@ void BarnesHut::Workspace::size_buffers(std::size_t n) {
   order.resize(n);
   records.resize(n);
   records_tmp.resize(n);
-  sx.resize(n);
-  sy.resize(n);
-  sm.resize(n);
+  // The leaf kernel reads a few elements past a leaf: readable and set.
+  for (auto* column : {&sx, &sy, &sm}) {
+    column->resize(n + bh::kLeafPadding);
+    std::fill(column->begin() + static_cast<std::ptrdiff_t>(n), column->end(), 0.0);
+  }
   if (single) sm32.resize(n);
   first_bits = n >= bh::kWideFirstFrom ? bh::kWideFirstBits : bh::kRadixBits;
   radix_counts.resize(nt * bh::kFirstBuckets);
@@ -577,15 +607,21 @@ std::uint32_t BarnesHut::Workspace::split(bh::Tree& t, std::uint32_t index, std:
                                           std::uint32_t end, int level,
                                           std::uint32_t (&bounds)[5]) const {
   // The quadrant digit below the common prefix: bits 2 (kBits - 1 - level) + {0, 1}.
+  // Where digits 1, 2 and 3 start: three binary searches side by side, each
+  // step a conditional move, not a branch (end - begin >= 2).
   const int shift = 2 * (kBits - 1 - level);
-  bounds[0] = begin;
-  const auto at = [&](std::uint32_t i) { return keys.begin() + static_cast<std::ptrdiff_t>(i); };
-  for (std::uint64_t d = 1; d < 4; ++d) {
-    bounds[d] = static_cast<std::uint32_t>(
-        std::partition_point(at(bounds[d - 1]), at(end),
-                             [&](std::uint64_t key) { return ((key >> shift) & 3u) < d; }) -
-        keys.begin());
+  const auto digit = [&](std::uint32_t i) { return (keys[i] >> shift) & 3u; };
+  std::uint32_t first[3] = {begin, begin, begin};
+  std::uint32_t length = end - begin;
+  while (length > 1) {
+    const std::uint32_t half = length / 2;
+    for (std::uint32_t d = 0; d < 3; ++d) {
+      first[d] = digit(first[d] + half - 1) <= d ? first[d] + half : first[d];
+    }
+    length -= half;
   }
+  bounds[0] = begin;
+  for (std::uint32_t d = 0; d < 3; ++d) bounds[d + 1] = first[d] + (digit(first[d]) <= d ? 1u : 0u);
   bounds[4] = end;
   std::uint32_t children = 0;
   for (int q = 0; q < 4; ++q) children += bounds[q + 1] > bounds[q] ? 1 : 0;

@@ -307,7 +307,7 @@ struct BarnesHut::Workspace {
     std::vector<std::uint64_t> loads;
   };
   std::vector<SortScratch> sort_scratch;
-  bh::UnsetVector<double> sx;  // bodies in Morton order
+  bh::UnsetVector<double> sx;  // bodies in Morton order, then kLeafPadding zeros
   bh::UnsetVector<double> sy;
   bh::UnsetVector<double> sm;
   bh::UnsetVector<float> sm32;  // scaled masses, float32

@@ -122,7 +122,7 @@ template <class Accepted, class Leaf>
 // share early walks the last chunks of the others' that are not started.
 void BarnesHut::Workspace::walk(const detail::LawParams& p, double scale, int threads,
                                 double factor, std::span<double> ax, std::span<double> ay) {
-  const std::size_t n = sx.size();
+  const std::size_t n = order.size();
   sum_x.resize(n);  // zeroed group by group
   sum_y.resize(n);
   scratch.resize(static_cast<std::size_t>(threads));

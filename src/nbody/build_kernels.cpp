@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cstddef>
 #include <cstdint>
+#include <cstring>
 
 #include "build_kernels.hpp"
 
@@ -35,111 +36,138 @@ void packed_keys(const Record* records, std::size_t n, const MortonCoder& code,
   }
 }
 
-// Four leaves at a time, one a lane (GCC/Clang vector extensions; a
-// narrower machine splits the vectors), each lane's sums those of its own
-// scalar loop. The lanes' bodies are first copied side by side, kSteps at a
-// time; a lane whose leaf has ended gets copies of its last body with a
-// mass of 0, whose products are zeros, which leave a sum as it was (a sum
-// that starts at +0 is never -0).
+// Each leaf on its own, four of its bodies a step (GCC/Clang vector
+// extensions; a narrower machine splits the vectors): lane j sums the
+// leaf's bodies j, j + 4, j + 8, ... in order, and each sum is then (lane 0
+// + lane 1) + (lane 2 + lane 3). A leaf's bodies are contiguous, so a step
+// is three plain loads. The last step's lanes past the leaf (which read the
+// next bodies, or the arrays' padding) count as a mass of 0 at offset 0,
+// whose products are +0, which leave a sum as it was (a sum that starts at
+// +0 is never -0).
 using V4 = double __attribute__((vector_size(32)));
-constexpr std::size_t kLanes = 4;
-constexpr std::uint32_t kSteps = 32;
+using M4 = std::int64_t __attribute__((vector_size(32)));
+constexpr std::uint32_t kLanes = 4;
 
-struct LeafLanes {
-  std::uint32_t first[kLanes];
-  std::uint32_t last[kLanes];
-  std::uint32_t longest = 0;
-  V4 x[kSteps];
-  V4 y[kSteps];
-  V4 m[kSteps];
+// The helpers below pass V4 by value; they are internal and inlined, so
+// the compilers' note that a narrower variant passes 32-byte vectors
+// differently does not apply.
+#if defined(__clang__)
+#if __has_warning("-Wpsabi")
+#pragma clang diagnostic ignored "-Wpsabi"
+#endif
+#elif defined(__GNUC__)
+#pragma GCC diagnostic ignored "-Wpsabi"
+#endif
 
-  // Steps [from, from + steps) of the lanes' bodies to x, y, m.
-  void copy(const double* bx, const double* by, const double* bm, std::uint32_t from,
-            std::uint32_t steps) {
-    for (std::size_t k = 0; k < kLanes; ++k) {
-      for (std::uint32_t j = 0; j < steps; ++j) {
-        const std::uint32_t body = first[k] + from + j;
-        const std::uint32_t at = body <= last[k] ? body : last[k];
-        x[j][k] = bx[at];
-        y[j][k] = by[at];
-        m[j][k] = body <= last[k] ? bm[at] : 0.0;
-      }
-    }
-  }
-};
+inline V4 load4(const double* p) {
+  V4 v;
+  std::memcpy(&v, p, sizeof v);
+  return v;
+}
 
-// Leaves [0, lanes) of begin, end (lanes <= kLanes).
-void leaf_lanes(const double* bx, const double* by, const double* bm, const std::uint32_t* begin,
-                const std::uint32_t* end, std::size_t lanes, double* sums) {
-  LeafLanes l;
-  for (std::size_t k = 0; k < kLanes; ++k) {
-    const std::size_t leaf = k < lanes ? k : lanes - 1;  // spare lanes repeat a leaf
-    l.first[k] = begin[leaf];
-    l.last[k] = end[leaf] - 1;
-    l.longest = std::max(l.longest, end[leaf] - begin[leaf]);
-  }
-  V4 mass = {};
-  V4 mx = {};
-  V4 my = {};
-  for (std::uint32_t from = 0; from < l.longest; from += kSteps) {
-    const std::uint32_t steps = std::min(kSteps, l.longest - from);
-    l.copy(bx, by, bm, from, steps);
-    for (std::uint32_t j = 0; j < steps; ++j) {
-      mass += l.m[j];
-      mx += l.m[j] * l.x[j];
-      my += l.m[j] * l.y[j];
-    }
-  }
-  mx /= mass;
-  my /= mass;
+inline void store4(double* p, const V4& v) { std::memcpy(p, &v, sizeof v); }
+
+// Lanes a[i] where keep[i], else +0 (keep: all ones or all zeros).
+inline V4 keep_lanes(const M4& keep, const V4& a) {
+  M4 bits;
+  std::memcpy(&bits, &a, sizeof bits);
+  bits &= keep;
+  V4 kept;
+  std::memcpy(&kept, &bits, sizeof kept);
+  return kept;
+}
+
+#if defined(__clang__)
+#define CALDER_SHUFFLE(a, b, i, j, k, l) __builtin_shufflevector(a, b, i, j, k, l)
+#else
+#define CALDER_SHUFFLE(a, b, i, j, k, l) __builtin_shuffle(a, b, M4{i, j, k, l})
+#endif
+
+// The sums of four vectors' lanes, (lane 0 + lane 1) + (lane 2 + lane 3),
+// as one vector.
+inline V4 lane_sums(const V4& a, const V4& b, const V4& c, const V4& d) {
+  const V4 ab = CALDER_SHUFFLE(a, b, 0, 4, 2, 6) + CALDER_SHUFFLE(a, b, 1, 5, 3, 7);
+  const V4 cd = CALDER_SHUFFLE(c, d, 0, 4, 2, 6) + CALDER_SHUFFLE(c, d, 1, 5, 3, 7);
+  return CALDER_SHUFFLE(ab, cd, 0, 1, 4, 5) + CALDER_SHUFFLE(ab, cd, 2, 3, 6, 7);
+}
+
+// The second to fourth moments' lanes.
+struct Sums {
   V4 q[3] = {};  // xx xy yy
   V4 o[4] = {};  // xxx xxy xyy yyy
   V4 h[5] = {};  // xxxx xxxy xxyy xyyy yyyy
-  for (std::uint32_t from = 0; from < l.longest; from += kSteps) {
-    const std::uint32_t steps = std::min(kSteps, l.longest - from);
-    if (l.longest > kSteps) l.copy(bx, by, bm, from, steps);  // else still there
-    for (std::uint32_t j = 0; j < steps; ++j) {
-      const V4 dx = l.x[j] - mx;
-      const V4 dy = l.y[j] - my;
-      const V4 mdx = l.m[j] * dx;
-      const V4 mdy = l.m[j] * dy;
-      const V4 xx = mdx * dx;
-      const V4 xy = mdx * dy;
-      const V4 yy = mdy * dy;
-      const V4 xxx = xx * dx;
-      const V4 xxy = xx * dy;
-      const V4 xyy = xy * dy;
-      const V4 yyy = yy * dy;
-      q[0] += xx;
-      q[1] += xy;
-      q[2] += yy;
-      o[0] += xxx;
-      o[1] += xxy;
-      o[2] += xyy;
-      o[3] += yyy;
-      h[0] += xxx * dx;
-      h[1] += xxx * dy;
-      h[2] += xxy * dy;
-      h[3] += xyy * dy;
-      h[4] += yyy * dy;
-    }
+
+  void add(const V4& m, const V4& dx, const V4& dy) {
+    const V4 mdx = m * dx;
+    const V4 mdy = m * dy;
+    const V4 xx = mdx * dx;
+    const V4 xy = mdx * dy;
+    const V4 yy = mdy * dy;
+    const V4 xxx = xx * dx;
+    const V4 xxy = xx * dy;
+    const V4 xyy = xy * dy;
+    const V4 yyy = yy * dy;
+    q[0] += xx;
+    q[1] += xy;
+    q[2] += yy;
+    o[0] += xxx;
+    o[1] += xxy;
+    o[2] += xyy;
+    o[3] += yyy;
+    h[0] += xxx * dx;
+    h[1] += xxx * dy;
+    h[2] += xxy * dy;
+    h[3] += xyy * dy;
+    h[4] += yyy * dy;
   }
-  for (std::size_t k = 0; k < lanes; ++k) {
-    double* out = sums + kLeafSums * k;
-    out[kLeafMass] = mass[k];
-    out[kLeafMx] = mx[k];
-    out[kLeafMy] = my[k];
-    for (int s = 0; s < 3; ++s) out[kLeafQxx + s] = q[s][k];
-    for (int s = 0; s < 4; ++s) out[kLeafOxxx + s] = o[s][k];
-    for (int s = 0; s < 5; ++s) out[kLeafHxxxx + s] = h[s][k];
+};
+
+void leaf_sums(const double* x, const double* y, const double* m, std::uint32_t begin,
+               std::uint32_t end, double* out) {
+  const std::uint32_t whole = begin + (end - begin) / kLanes * kLanes;
+  const auto rest = static_cast<std::int64_t>(end - whole);
+  const M4 lane = {0, 1, 2, 3};
+  const M4 in_leaf = lane < M4{rest, rest, rest, rest};
+  V4 mass = {};
+  V4 mx = {};
+  V4 my = {};
+  for (std::uint32_t i = begin; i < whole; i += kLanes) {
+    const V4 mi = load4(m + i);
+    mass += mi;
+    mx += mi * load4(x + i);
+    my += mi * load4(y + i);
   }
+  V4 m_last = {};
+  if (rest > 0) {
+    m_last = keep_lanes(in_leaf, load4(m + whole));
+    mass += m_last;
+    mx += m_last * keep_lanes(in_leaf, load4(x + whole));
+    my += m_last * keep_lanes(in_leaf, load4(y + whole));
+  }
+  const V4 centre = lane_sums(mass, mx, my, V4{});
+  const double total = centre[0];
+  const double cx = centre[1] / total;
+  const double cy = centre[2] / total;
+  Sums s;
+  for (std::uint32_t i = begin; i < whole; i += kLanes) {
+    s.add(load4(m + i), load4(x + i) - cx, load4(y + i) - cy);
+  }
+  if (rest > 0) {
+    s.add(m_last, keep_lanes(in_leaf, load4(x + whole) - cx),
+          keep_lanes(in_leaf, load4(y + whole) - cy));
+  }
+  out[kLeafMass] = total;
+  out[kLeafMx] = cx;
+  out[kLeafMy] = cy;
+  store4(out + kLeafQxx, lane_sums(s.q[0], s.q[1], s.q[2], s.o[0]));
+  store4(out + kLeafOxxy, lane_sums(s.o[1], s.o[2], s.o[3], s.h[0]));
+  store4(out + kLeafHxxxy, lane_sums(s.h[1], s.h[2], s.h[3], s.h[4]));
 }
 
 void leaf_moments(const double* x, const double* y, const double* m, const std::uint32_t* begin,
                   const std::uint32_t* end, std::size_t count, double* sums) {
-  for (std::size_t k = 0; k < count; k += kLanes) {
-    leaf_lanes(x, y, m, begin + k, end + k, std::min(kLanes, count - k), sums + kLeafSums * k);
-  }
+  for (std::size_t k = 0; k < count; ++k)
+    leaf_sums(x, y, m, begin[k], end[k], sums + kLeafSums * k);
 }
 
 }  // namespace

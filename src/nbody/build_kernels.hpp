@@ -55,6 +55,9 @@ struct alignas(32) Record {
   std::uint32_t index;
 };
 
+// Elements that BuildKernels::leaf_moments may read past a leaf's bodies.
+inline constexpr std::size_t kLeafPadding = 3;
+
 // A leaf's sums, in the order of BuildKernels::leaf_moments' output.
 enum LeafSum : int {
   kLeafMass,
@@ -87,9 +90,11 @@ struct BuildKernels {
                       std::uint64_t key_mask, int place_bits, std::uint64_t* packed);
   // For each leaf k < count, bodies [begin[k], end[k]) of (x, y, m) (at
   // least one): its mass, centre of mass and moments, to sums[kLeafSums k +
-  // LeafSum]. Each sum runs over the leaf's bodies in order, each product
-  // from the mass rightwards (m dx dx dy): the bits of the plain loops, in
-  // every variant.
+  // LeafSum]. Each sum is four partial sums, the j-th over the leaf's bodies
+  // j, j + 4, j + 8, ... in order, added as (0 + 1) + (2 + 3); each product
+  // from the mass rightwards (m dx dx dy): the same bits in every variant.
+  // x, y and m are read up to kLeafPadding elements past a leaf's end (not
+  // used: they need only be readable).
   void (*leaf_moments)(const double* x, const double* y, const double* m,
                        const std::uint32_t* begin, const std::uint32_t* end, std::size_t count,
                        double* sums);
