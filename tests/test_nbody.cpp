@@ -827,18 +827,11 @@ std::vector<double> plain_leaf_sums(const double* x, const double* y, const doub
       return p;
     });
   };
-  sums[nb::bh::kLeafQxx] = moment(2, 0);
-  sums[nb::bh::kLeafQxy] = moment(1, 1);
-  sums[nb::bh::kLeafQyy] = moment(0, 2);
-  sums[nb::bh::kLeafOxxx] = moment(3, 0);
-  sums[nb::bh::kLeafOxxy] = moment(2, 1);
-  sums[nb::bh::kLeafOxyy] = moment(1, 2);
-  sums[nb::bh::kLeafOyyy] = moment(0, 3);
-  sums[nb::bh::kLeafHxxxx] = moment(4, 0);
-  sums[nb::bh::kLeafHxxxy] = moment(3, 1);
-  sums[nb::bh::kLeafHxxyy] = moment(2, 2);
-  sums[nb::bh::kLeafHxyyy] = moment(1, 3);
-  sums[nb::bh::kLeafHyyyy] = moment(0, 4);
+  // From kLeafQxx on: xx xy yy, xxx xxy xyy yyy, xxxx xxxy xxyy xyyy yyyy.
+  int at = nb::bh::kLeafQxx;
+  for (int order = 2; order <= 4; ++order) {
+    for (int j = 0; j <= order; ++j) sums[static_cast<std::size_t>(at++)] = moment(order - j, j);
+  }
   return sums;
 }
 

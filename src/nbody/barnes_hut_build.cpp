@@ -842,9 +842,8 @@ void BarnesHut::Workspace::finish_node(bh::Tree& t, std::uint32_t index) const {
 }
 
 // The moments and opening radii of a part that build_node made: its leaves'
-// from their bodies, four leaves at a time (the build kernels), then its
-// inner nodes' from their children, last node first (a node's children come
-// after it).
+// from their bodies (the build kernels), then its inner nodes' from their
+// children, last node first (a node's children come after it).
 void BarnesHut::Workspace::finish_part(bh::Tree& t, SortScratch& buffers) const {
   buffers.leaf_node.clear();
   buffers.leaf_begin.clear();
