@@ -600,29 +600,49 @@ int BarnesHut::Workspace::level_of(std::uint32_t begin, std::uint32_t end) const
   return first == last ? kBits : (leading_zeros(first ^ last) - (64 - 2 * kBits)) / 2;
 }
 
-// Splits node `index` of t (bodies [begin, end), common prefix `level`) into
-// its non-empty quadrants, appended to t as contiguous children; returns how
-// many. bounds: the quadrants' body ranges.
-std::uint32_t BarnesHut::Workspace::split(bh::Tree& t, std::uint32_t index, std::uint32_t begin,
-                                          std::uint32_t end, int level,
-                                          std::uint32_t (&bounds)[5]) const {
+// Where the quadrants of the bodies [begin, end) (common prefix `level`,
+// end - begin >= 2) start: bounds[q] for digit q, bounds[4] = end. Keys in
+// the cache (warm): three binary searches side by side, each step a
+// conditional move, not a branch. Keys out of it (the top of the tree):
+// one search after another, whose branches let the processor fetch ahead.
+void BarnesHut::Workspace::quadrant_bounds(std::uint32_t begin, std::uint32_t end, int level,
+                                           bool warm, std::uint32_t (&bounds)[5]) const {
   // The quadrant digit below the common prefix: bits 2 (kBits - 1 - level) + {0, 1}.
-  // Where digits 1, 2 and 3 start: three binary searches side by side, each
-  // step a conditional move, not a branch (end - begin >= 2).
   const int shift = 2 * (kBits - 1 - level);
-  const auto digit = [&](std::uint32_t i) { return (keys[i] >> shift) & 3u; };
+  const auto digit = [&](std::uint64_t key) { return (key >> shift) & 3u; };
+  bounds[0] = begin;
+  bounds[4] = end;
+  if (!warm) {
+    const auto at = [&](std::uint32_t i) { return keys.begin() + static_cast<std::ptrdiff_t>(i); };
+    for (std::uint64_t d = 1; d < 4; ++d) {
+      bounds[d] = static_cast<std::uint32_t>(
+          std::partition_point(at(bounds[d - 1]), at(end),
+                               [&](std::uint64_t key) { return digit(key) < d; }) -
+          keys.begin());
+    }
+    return;
+  }
   std::uint32_t first[3] = {begin, begin, begin};
   std::uint32_t length = end - begin;
   while (length > 1) {
     const std::uint32_t half = length / 2;
     for (std::uint32_t d = 0; d < 3; ++d) {
-      first[d] = digit(first[d] + half - 1) <= d ? first[d] + half : first[d];
+      first[d] = digit(keys[first[d] + half - 1]) <= d ? first[d] + half : first[d];
     }
     length -= half;
   }
-  bounds[0] = begin;
-  for (std::uint32_t d = 0; d < 3; ++d) bounds[d + 1] = first[d] + (digit(first[d]) <= d ? 1u : 0u);
-  bounds[4] = end;
+  for (std::uint32_t d = 0; d < 3; ++d) {
+    bounds[d + 1] = first[d] + (digit(keys[first[d]]) <= d ? 1u : 0u);
+  }
+}
+
+// Splits node `index` of t (bodies [begin, end), common prefix `level`) into
+// its non-empty quadrants, appended to t as contiguous children; returns how
+// many. bounds: the quadrants' body ranges; warm: see quadrant_bounds.
+std::uint32_t BarnesHut::Workspace::split(bh::Tree& t, std::uint32_t index, std::uint32_t begin,
+                                          std::uint32_t end, int level, bool warm,
+                                          std::uint32_t (&bounds)[5]) const {
+  quadrant_bounds(begin, end, level, warm, bounds);
   std::uint32_t children = 0;
   for (int q = 0; q < 4; ++q) children += bounds[q + 1] > bounds[q] ? 1 : 0;
   bh::Node& node = t.nodes[index];
@@ -779,7 +799,7 @@ void BarnesHut::Workspace::plan(std::uint32_t index, std::uint32_t begin, std::u
   }
   top.push_back(index);
   std::uint32_t bounds[5];
-  split(tree, index, begin, end, level, bounds);
+  split(tree, index, begin, end, level, false, bounds);
   std::uint32_t c = tree.nodes[index].child;
   for (int q = 0; q < 4; ++q) {
     if (bounds[q + 1] > bounds[q]) plan(c++, bounds[q], bounds[q + 1], tree_depth + 1, cutoff);
@@ -822,7 +842,7 @@ void BarnesHut::Workspace::build_node(bh::Tree& t, std::uint32_t index, std::uin
     node.children = 0;
   } else {
     std::uint32_t bounds[5];
-    split(t, index, begin, end, level, bounds);  // reserved capacity: no reallocation
+    split(t, index, begin, end, level, true, bounds);  // reserved capacity: no reallocation
     std::uint32_t c = t.nodes[index].child;
     for (int q = 0; q < 4; ++q) {
       if (bounds[q + 1] > bounds[q])

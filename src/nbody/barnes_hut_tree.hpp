@@ -397,8 +397,10 @@ struct BarnesHut::Workspace {
   void copy_own_parts(std::size_t t);
   void finish_top();
   int level_of(std::uint32_t begin, std::uint32_t end) const;
+  void quadrant_bounds(std::uint32_t begin, std::uint32_t end, int level, bool warm,
+                       std::uint32_t (&bounds)[5]) const;
   std::uint32_t split(bh::Tree& t, std::uint32_t index, std::uint32_t begin, std::uint32_t end,
-                      int level, std::uint32_t (&bounds)[5]) const;
+                      int level, bool warm, std::uint32_t (&bounds)[5]) const;
   void plan(std::uint32_t index, std::uint32_t begin, std::uint32_t end, int tree_depth,
             std::size_t cutoff);
   std::uint32_t range_with_sort(std::uint32_t begin, std::uint32_t end, bool& inside) const;
