@@ -601,24 +601,26 @@ int BarnesHut::Workspace::level_of(std::uint32_t begin, std::uint32_t end) const
 }
 
 // Where the quadrants of the bodies [begin, end) (common prefix `level`,
-// end - begin >= 2) start: bounds[q] for digit q, bounds[4] = end. Keys in
-// the cache (warm): three binary searches side by side, each step a
-// conditional move, not a branch. Keys out of it (the top of the tree):
-// one search after another, whose branches let the processor fetch ahead.
+// end - begin >= 2) start: bounds[q] for digit q, bounds[4] = end. A node
+// of the top of the tree (in_top) holds whole sort ranges, each inside one of
+// its quadrants: a search over the ranges' first keys (range_firsts, in the
+// cache), not over keys that are not. Below: three binary searches over the
+// keys side by side, each step a conditional move, not a branch.
 void BarnesHut::Workspace::quadrant_bounds(std::uint32_t begin, std::uint32_t end, int level,
-                                           bool warm, std::uint32_t (&bounds)[5]) const {
+                                           bool in_top, std::uint32_t (&bounds)[5]) const {
   // The quadrant digit below the common prefix: bits 2 (kBits - 1 - level) + {0, 1}.
   const int shift = 2 * (kBits - 1 - level);
   const auto digit = [&](std::uint64_t key) { return (key >> shift) & 3u; };
   bounds[0] = begin;
   bounds[4] = end;
-  if (!warm) {
-    const auto at = [&](std::uint32_t i) { return keys.begin() + static_cast<std::ptrdiff_t>(i); };
+  if (in_top) {
+    using First = std::pair<std::uint32_t, std::uint64_t>;
+    const auto by_body = [](const First& r, std::uint32_t body) { return r.first < body; };
+    auto from = std::lower_bound(range_firsts.begin(), range_firsts.end(), begin, by_body);
+    const auto to = std::lower_bound(from, range_firsts.end(), end, by_body);
     for (std::uint64_t d = 1; d < 4; ++d) {
-      bounds[d] = static_cast<std::uint32_t>(
-          std::partition_point(at(bounds[d - 1]), at(end),
-                               [&](std::uint64_t key) { return digit(key) < d; }) -
-          keys.begin());
+      from = std::partition_point(from, to, [&](const First& r) { return digit(r.second) < d; });
+      bounds[d] = from == to ? end : from->first;
     }
     return;
   }
@@ -638,11 +640,11 @@ void BarnesHut::Workspace::quadrant_bounds(std::uint32_t begin, std::uint32_t en
 
 // Splits node `index` of t (bodies [begin, end), common prefix `level`) into
 // its non-empty quadrants, appended to t as contiguous children; returns how
-// many. bounds: the quadrants' body ranges; warm: see quadrant_bounds.
+// many. bounds: the quadrants' body ranges; in_top: see quadrant_bounds.
 std::uint32_t BarnesHut::Workspace::split(bh::Tree& t, std::uint32_t index, std::uint32_t begin,
-                                          std::uint32_t end, int level, bool warm,
+                                          std::uint32_t end, int level, bool in_top,
                                           std::uint32_t (&bounds)[5]) const {
-  quadrant_bounds(begin, end, level, warm, bounds);
+  quadrant_bounds(begin, end, level, in_top, bounds);
   std::uint32_t children = 0;
   for (int q = 0; q < 4; ++q) children += bounds[q + 1] > bounds[q] ? 1 : 0;
   bh::Node& node = t.nodes[index];
@@ -669,6 +671,10 @@ void BarnesHut::Workspace::plan_tree() {
     }
   }
   std::sort(with_sort.begin(), with_sort.end());
+  range_firsts.clear();
+  for (const bh::SortRange& range : sort_small)
+    range_firsts.emplace_back(range.begin, keys[range.begin]);
+  std::sort(range_firsts.begin(), range_firsts.end());
   const auto n = static_cast<std::uint32_t>(keys.size());
   tree.reset();
   tree.nodes.reserve(2 * std::size_t{n});  // every inner node has >= 2 children: < 2n nodes
@@ -799,7 +805,7 @@ void BarnesHut::Workspace::plan(std::uint32_t index, std::uint32_t begin, std::u
   }
   top.push_back(index);
   std::uint32_t bounds[5];
-  split(tree, index, begin, end, level, false, bounds);
+  split(tree, index, begin, end, level, true, bounds);
   std::uint32_t c = tree.nodes[index].child;
   for (int q = 0; q < 4; ++q) {
     if (bounds[q + 1] > bounds[q]) plan(c++, bounds[q], bounds[q + 1], tree_depth + 1, cutoff);
@@ -842,7 +848,7 @@ void BarnesHut::Workspace::build_node(bh::Tree& t, std::uint32_t index, std::uin
     node.children = 0;
   } else {
     std::uint32_t bounds[5];
-    split(t, index, begin, end, level, true, bounds);  // reserved capacity: no reallocation
+    split(t, index, begin, end, level, false, bounds);  // reserved capacity: no reallocation
     std::uint32_t c = t.nodes[index].child;
     for (int q = 0; q < 4; ++q) {
       if (bounds[q + 1] > bounds[q])

@@ -321,6 +321,9 @@ struct BarnesHut::Workspace {
   // those ranges' (begin, r), by begin.
   std::vector<bh::Tree> range_parts;
   std::vector<std::pair<std::uint32_t, std::uint32_t>> with_sort;
+  // Every sort range's first body and key, by first body: the top of the
+  // tree splits at these (its nodes hold whole ranges).
+  std::vector<std::pair<std::uint32_t, std::uint64_t>> range_firsts;
   // Thread t's sort ranges and subtrees (assign_greedy), and its scratch.
   std::vector<std::vector<std::uint32_t>> own_ranges;
   std::vector<std::vector<std::uint32_t>> own_parts;
@@ -397,10 +400,10 @@ struct BarnesHut::Workspace {
   void copy_own_parts(std::size_t t);
   void finish_top();
   int level_of(std::uint32_t begin, std::uint32_t end) const;
-  void quadrant_bounds(std::uint32_t begin, std::uint32_t end, int level, bool warm,
+  void quadrant_bounds(std::uint32_t begin, std::uint32_t end, int level, bool in_top,
                        std::uint32_t (&bounds)[5]) const;
   std::uint32_t split(bh::Tree& t, std::uint32_t index, std::uint32_t begin, std::uint32_t end,
-                      int level, bool warm, std::uint32_t (&bounds)[5]) const;
+                      int level, bool in_top, std::uint32_t (&bounds)[5]) const;
   void plan(std::uint32_t index, std::uint32_t begin, std::uint32_t end, int tree_depth,
             std::size_t cutoff);
   std::uint32_t range_with_sort(std::uint32_t begin, std::uint32_t end, bool& inside) const;
