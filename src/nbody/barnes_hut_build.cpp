@@ -718,12 +718,16 @@ void BarnesHut::Workspace::build_own_parts(std::size_t t) {
 }
 
 // Where the parts' nodes go: part k's node c to its root's slot (c = 0) or
-// to part_base[k] + c - 1; the groups in part order.
+// to part_base[k] + c - 1; and its groups: from group_base[k] on (the groups
+// in part order).
 void BarnesHut::Workspace::place_parts() {
   part_base.resize(pending.size() + 1);
+  group_base.resize(pending.size() + 1);
   part_base[0] = tree.nodes.size();
+  group_base[0] = 0;  // no group above the parts
   for (std::size_t k = 0; k < pending.size(); ++k) {
     part_base[k + 1] = part_base[k] + parts[k].nodes.size() - 1;
+    group_base[k + 1] = group_base[k] + parts[k].groups.size();
     tree.depth = std::max(tree.depth, parts[k].depth);
     tree.leaves += parts[k].leaves;
   }
@@ -731,17 +735,12 @@ void BarnesHut::Workspace::place_parts() {
   tree.nodes.resize(nodes);  // tree.moments: the top and the parts' roots only (finish_top)
   parent.resize(nodes);
   (single ? node32.resize(nodes * bh::kMoments) : node64.resize(nodes * bh::kMoments));
-  for (std::size_t k = 0; k < pending.size(); ++k) {
-    const auto base = static_cast<std::uint32_t>(part_base[k]);
-    for (const std::uint32_t g : parts[k].groups) {
-      tree.groups.push_back(g == 0 ? pending[k].index : base + g - 1);
-    }
-  }
+  tree.groups.resize(group_base.back());  // written by copy_own_parts
 }
 
-// The parts' nodes into the tree, with their parents and kernel moments:
-// thread t takes its slice of all the parts' nodes, one after the other
-// (part k's start among them: part_base[k] - part_base[0] + k).
+// The parts' nodes into the tree, with their parents, kernel moments and
+// groups: thread t takes its slice of all the parts' nodes, one after the
+// other (part k's start among them: part_base[k] - part_base[0] + k).
 void BarnesHut::Workspace::copy_own_parts(std::size_t t) {
   const std::size_t parts_n = pending.size();
   const std::size_t total = part_base[parts_n] - part_base[0] + parts_n;
@@ -768,7 +767,11 @@ void BarnesHut::Workspace::copy_own_parts(std::size_t t) {
         for (std::uint32_t d = node.child; d < node.child + node.children; ++d) parent[d] = to;
       }
       tree.nodes[to] = node;
-      if (c == 0) tree.moments[to] = part.moments[c];
+      if (c == 0) {  // with the part's groups, by the thread that has its root
+        tree.moments[to] = part.moments[c];
+        std::uint32_t* groups = tree.groups.data() + group_base[k];
+        for (const std::uint32_t g : part.groups) *groups++ = g == 0 ? root : base + g - 1;
+      }
       kernel_moments(to, part.moments[c]);
     }
   }

@@ -312,10 +312,11 @@ struct BarnesHut::Workspace {
   bh::UnsetVector<double> sm;
   bh::UnsetVector<float> sm32;  // scaled masses, float32
   bh::Tree tree;
-  std::vector<bh::Tree> parts;         // the subtrees, in tree order
-  std::vector<bh::Pending> pending;    // their roots
-  std::vector<std::uint32_t> top;      // the nodes above them, in creation order
-  std::vector<std::size_t> part_base;  // where each part's nodes go in the tree
+  std::vector<bh::Tree> parts;          // the subtrees, in tree order
+  std::vector<bh::Pending> pending;     // their roots
+  std::vector<std::uint32_t> top;       // the nodes above them, in creation order
+  std::vector<std::size_t> part_base;   // where each part's nodes go in the tree
+  std::vector<std::size_t> group_base;  // and its groups in tree.groups
   // range_parts[r]: the subtree of sort_small[r] (when builds_with_sort),
   // built by the thread that sorted it, then swapped into parts; with_sort:
   // those ranges' (begin, r), by begin.
