@@ -665,15 +665,13 @@ std::uint32_t BarnesHut::Workspace::split(bh::Tree& t, std::uint32_t index, std:
 // never a group or a leaf above the subtrees.
 void BarnesHut::Workspace::plan_tree() {
   with_sort.clear();
+  range_firsts.clear();
   for (std::size_t r = 0; r < sort_small.size(); ++r) {
-    if (builds_with_sort(sort_small[r])) {
-      with_sort.emplace_back(sort_small[r].begin, static_cast<std::uint32_t>(r));
-    }
+    const bh::SortRange& range = sort_small[r];
+    range_firsts.emplace_back(range.begin, keys[range.begin]);
+    if (builds_with_sort(range)) with_sort.emplace_back(range.begin, static_cast<std::uint32_t>(r));
   }
   std::sort(with_sort.begin(), with_sort.end());
-  range_firsts.clear();
-  for (const bh::SortRange& range : sort_small)
-    range_firsts.emplace_back(range.begin, keys[range.begin]);
   std::sort(range_firsts.begin(), range_firsts.end());
   const auto n = static_cast<std::uint32_t>(keys.size());
   tree.reset();

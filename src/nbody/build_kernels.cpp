@@ -166,8 +166,9 @@ void leaf_sums(const double* x, const double* y, const double* m, std::uint32_t 
 
 void leaf_moments(const double* x, const double* y, const double* m, const std::uint32_t* begin,
                   const std::uint32_t* end, std::size_t count, double* sums) {
-  for (std::size_t k = 0; k < count; ++k)
+  for (std::size_t k = 0; k < count; ++k) {
     leaf_sums(x, y, m, begin[k], end[k], sums + kLeafSums * k);
+  }
 }
 
 }  // namespace
