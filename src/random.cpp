@@ -152,8 +152,9 @@ void Noise::noise_seed(double seed) {
 }
 
 void Noise::noise_detail(int octaves, double falloff) {
-  if (octaves < 1) {
-    throw Error("noise_detail: octaves must be >= 1 (got " + std::to_string(octaves) + ")");
+  if (octaves < 1 || octaves > kMaxOctaves) {
+    throw Error("noise_detail: octaves must be from 1 to " + std::to_string(kMaxOctaves) +
+                " (got " + std::to_string(octaves) + ")");
   }
   detail::require_finite(falloff, "noise_detail", "falloff");
   octaves_ = octaves;

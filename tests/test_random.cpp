@@ -535,6 +535,18 @@ TEST(Noise, DetailChangesTheResult) {
   EXPECT_EQ(noise.noise(0.0), t0 * 0.5 + t0 * 0.125 + t0 * 0.03125);
 }
 
+// The most octaves allowed: every one sampled, the sum still in [0, 1).
+TEST(Noise, TakesUpToTheMostOctaves) {
+  Noise noise(1u);
+  noise.noise_detail(Noise::kMaxOctaves, 0.5);
+  EXPECT_EQ(noise.octaves(), Noise::kMaxOctaves);
+  const double value = noise.noise(0.3, 0.7, 0.1);
+  EXPECT_GE(value, 0.0);
+  EXPECT_LT(value, 1.0);
+  noise.noise_detail(4, 0.5);
+  EXPECT_NE(noise.noise(0.3, 0.7, 0.1), value);  // the octaves past 4 counted
+}
+
 TEST(Noise, RejectsInvalidInput) {
   Noise noise(1u);
   expect_error([&] { (void)noise.noise(kNan); }, "noise");
@@ -542,6 +554,9 @@ TEST(Noise, RejectsInvalidInput) {
   expect_error([&] { (void)noise.noise(0.0, 0.0, -kInf); }, "noise");
   expect_error([&] { noise.noise_detail(0, 0.5); }, "noise_detail");
   expect_error([&] { noise.noise_detail(-3, 0.5); }, "octaves");
+  // A sample costs a pass an octave: a count from a file can't make it hang.
+  expect_error([&] { noise.noise_detail(Noise::kMaxOctaves + 1, 0.5); }, "octaves");
+  expect_error([&] { noise.noise_detail(std::numeric_limits<int>::max(), 0.5); }, "octaves");
   expect_error([&] { noise.noise_detail(4, kNan); }, "falloff");
   expect_error([&] { (void)calder::noise(kNan); }, "noise");
   // A rejected call leaves the settings alone.

@@ -82,8 +82,12 @@ class Noise {
   void noise_seed(double seed);
   void noise_seed(int seed) { noise_seed(static_cast<double>(seed)); }
   // p5 noiseDetail(octaves, falloff). Defaults: 4 octaves, falloff 0.5.
-  // Throws calder::Error for octaves < 1 or a falloff that is not finite.
+  // Throws calder::Error for octaves outside [1, kMaxOctaves] or a falloff
+  // that is not finite.
   void noise_detail(int octaves, double falloff = 0.5);
+  // Each sample costs one pass a octave; past 64, an octave at a falloff
+  // below 1 adds less than 2^-64 of the first one's amplitude.
+  static constexpr int kMaxOctaves = 64;
 
   // p5 noise(x, y, z) in [0, 1). Throws calder::Error for NaN or infinite input.
   [[nodiscard]] double noise(double x, double y = 0.0, double z = 0.0) const;

@@ -108,6 +108,7 @@ CASES = [
     (lambda: calder.Noise().noise(0.0, INF), ["must be finite"]),
     (lambda: calder.Noise().noise_detail(0, 0.5), ["noise_detail"]),
     (lambda: calder.Noise().noise_detail(-3, 0.5), ["octaves"]),
+    (lambda: calder.Noise().noise_detail(65, 0.5), ["octaves", "64"]),
     (lambda: calder.Noise().noise_detail(4, NAN), ["falloff"]),
     (lambda: calder.map_range(1.0, 2.0, 2.0, 0.0, 1.0), ["map_range"]),
     (lambda: calder.map_range(NAN, 0.0, 1.0, 0.0, 1.0), ["value"]),
