@@ -216,7 +216,7 @@ void BarnesHut::Workspace::build(std::span<const double> x, std::span<const doub
     const auto mark = [&](int phase) {
       if (s.t == 0) phase_end[phase] = now_seconds();
     };
-    bound(x, y, mass, s.t, s.nt);
+    bound(x, y, s.t, s.nt);
 #if defined(_OPENMP)
 #pragma omp barrier
 #endif
@@ -226,13 +226,20 @@ void BarnesHut::Workspace::build(std::span<const double> x, std::span<const doub
       x0 = square.x0;
       y0 = square.y0;
       side = square.side;
-      max_mass = square.max_mass;
-      // The float32 masses of subtrees built with their sort range need it.
-      frame = detail::float_frame(x0 + side * 0.5, y0 + side * 0.5, side * 0.5, max_mass, G);
+      for (int level = 0; level <= kBits; ++level) {
+        cell_size[static_cast<std::size_t>(level)] = std::ldexp(side, -level);
+      }
     }
     const bh::MortonCoder code(square.x0, square.y0, square.side);
     first_pass(x, y, mass, code, s.t, s.nt);
-    mark(2);  // first_pass ends with the team's wait
+#if defined(_OPENMP)
+#pragma omp single
+#endif
+    {  // the float32 masses of subtrees built with their sort range need it
+      max_mass = heaviest(s.nt);
+      frame = detail::float_frame(x0 + side * 0.5, y0 + side * 0.5, side * 0.5, max_mass, G);
+    }
+    mark(2);
     sort_keys(code, s.t, s.nt);
     sort_own_ranges(code, s.t);
 #if defined(_OPENMP)
@@ -295,9 +302,10 @@ void BarnesHut::Workspace::size_buffers(std::size_t n) {
   sort_small.clear();
 }
 
-// Thread t's share of the bounding box and of the heaviest mass.
+// Thread t's share of the bounding box (the heaviest mass: first_pass,
+// which reads the masses anyway).
 void BarnesHut::Workspace::bound(std::span<const double> x, std::span<const double> y,
-                                 std::span<const double> mass, std::size_t t, std::size_t nt) {
+                                 std::size_t t, std::size_t nt) {
   const std::size_t n = x.size();
   const std::size_t lo = n * t / nt;
   const std::size_t hi = n * (t + 1) / nt;
@@ -305,42 +313,44 @@ void BarnesHut::Workspace::bound(std::span<const double> x, std::span<const doub
   double xmax = x[lo];
   double ymin = y[lo];
   double ymax = y[lo];
-  double heaviest = 0.0;
   for (std::size_t i = lo; i < hi; ++i) {
     xmin = std::min(xmin, x[i]);
     xmax = std::max(xmax, x[i]);
     ymin = std::min(ymin, y[i]);
     ymax = std::max(ymax, y[i]);
-    heaviest = std::max(heaviest, mass[i]);
   }
   double* p = partial.data() + 5 * t;
   p[0] = xmin;
   p[1] = xmax;
   p[2] = ymin;
   p[3] = ymax;
-  p[4] = heaviest;
 }
 
 // The root square from the threads' boxes: the lower corner and the larger
-// side (min and max are exact: the same for any split), and the heaviest
-// mass. Every thread works it out for itself.
+// side (min and max are exact: the same for any split). Every thread works
+// it out for itself.
 bh::Square BarnesHut::Workspace::combine_bounds(std::size_t nt) const {
   double xmin = partial[0];
   double xmax = partial[1];
   double ymin = partial[2];
   double ymax = partial[3];
-  double heaviest = partial[4];
   for (std::size_t t = 1; t < nt; ++t) {
     const double* p = partial.data() + 5 * t;
     xmin = std::min(xmin, p[0]);
     xmax = std::max(xmax, p[1]);
     ymin = std::min(ymin, p[2]);
     ymax = std::max(ymax, p[3]);
-    heaviest = std::max(heaviest, p[4]);
   }
   double larger = std::max(xmax - xmin, ymax - ymin);
   if (!(larger > 0.0)) larger = 1.0;  // one point (or one body)
-  return bh::Square{xmin, ymin, larger, heaviest};
+  return bh::Square{xmin, ymin, larger};
+}
+
+// The heaviest mass, from the threads' shares (first_pass).
+double BarnesHut::Workspace::heaviest(std::size_t nt) const {
+  double most = partial[4];
+  for (std::size_t t = 1; t < nt; ++t) most = std::max(most, partial[5 * t + 4]);
+  return most;
 }
 
 // The first radix pass, by the keys' top digit, after the Morton codes:
@@ -387,9 +397,11 @@ void BarnesHut::Workspace::first_pass(std::span<const double> x, std::span<const
     fill[b] = 0;
     want[b] = starts_line(out + mine[b]) ? bh::kStage : 1;
   }
+  double heaviest = 0.0;
   for (std::size_t i = lo; i < hi; ++i) {
     const auto b = static_cast<std::size_t>(key[i] >> shift);
     bh::Record* slot = stage + b * bh::kStage;
+    heaviest = std::max(heaviest, mass[i]);
     slot[fill[b]] = bh::Record{x[i], y[i], mass[i], static_cast<std::uint32_t>(i)};
     if (++fill[b] == want[b]) {
       if (want[b] == bh::kStage) {
@@ -407,6 +419,7 @@ void BarnesHut::Workspace::first_pass(std::span<const double> x, std::span<const
     for (std::size_t k = 0; k < fill[b]; ++k) out[mine[b] + k] = slot[k];
   }
   end_streams();
+  partial[5 * t + 4] = heaviest;
   work[bh::kRegionBodies * nt + t] += hi - lo;
 #if defined(_OPENMP)
 #pragma omp barrier
@@ -440,10 +453,12 @@ void BarnesHut::Workspace::sort_own_ranges(const bh::MortonCoder& code, std::siz
   std::uint64_t built = 0;
   for (const std::uint32_t r : own_ranges[t]) {
     const bh::SortRange& range = sort_small[r];
-    sort_range(code, range, sort_scratch[t]);
+    SortScratch& mine = sort_scratch[t];
+    sort_range(code, range, mine);
     done += range.end - range.begin;
     if (builds_with_sort(range)) {
-      build_part(range_parts[r], range.begin, range.end, 0, sort_scratch[t]);
+      build_part(range_parts[r], range.begin, range.end, 0,
+                 bh::SortedKeys{mine.range_keys.data(), range.begin}, mine);
       built += range.end - range.begin;
     }
   }
@@ -464,12 +479,13 @@ bool BarnesHut::Workspace::builds_with_sort(const bh::SortRange& range) const {
 // The subtree of bodies [begin, end) into `part` (numbered from 0, its root
 // at `depth`): nodes, moments and opening radii, and float32 masses.
 void BarnesHut::Workspace::build_part(bh::Tree& part, std::uint32_t begin, std::uint32_t end,
-                                      int depth, SortScratch& buffers) {
+                                      int depth, const bh::SortedKeys& sorted,
+                                      SortScratch& buffers) {
   part.reset();
   part.nodes.reserve(2 * std::size_t{end - begin});
   part.moments.reserve(2 * std::size_t{end - begin});
-  build_node(part, 0, begin, end, depth, false);
-  finish_part(part, buffers);
+  build_node(part, 0, begin, end, depth, false, sorted);
+  finish_part(part, sorted, buffers);
   if (single) float_masses(begin, end);
 }
 
@@ -555,21 +571,34 @@ void BarnesHut::Workspace::list_ranges(const bh::SortRange& range, int width,
 // range are packed in one integer (distinct, and in index order for equal
 // keys: the passes are stable), sorted in the thread's buffers; the records
 // are then read in that order, from cache, and each key put together again
-// from the range's shared bits and its packed ones.
+// from the range's shared bits and its packed ones. The keys of a range
+// that builds its subtree with its sort stay in the thread's range_keys: of
+// them, only the first and the last are read after (the top of the tree).
 void BarnesHut::Workspace::sort_range(const bh::MortonCoder& code, const bh::SortRange& range,
                                       SortScratch& buffers) {
   const std::size_t length = range.end - range.begin;
   const bh::Record* from = (range.in_tmp ? records_tmp.data() : records.data()) + range.begin;
+  std::uint64_t* key_to = keys.data() + range.begin;
+  if (builds_with_sort(range)) {
+    buffers.range_keys.resize(length);
+    key_to = buffers.range_keys.data();
+  }
   const auto put = [&](std::size_t k, std::uint64_t key, const bh::Record& r) {
-    keys[k] = key;
-    order[k] = r.index;
-    sx[k] = r.x;
-    sy[k] = r.y;
-    sm[k] = r.m;
+    key_to[k] = key;
+    const std::size_t rank = range.begin + k;
+    order[rank] = r.index;
+    sx[rank] = r.x;
+    sy[rank] = r.y;
+    sm[rank] = r.m;
+  };
+  const auto keep_ends = [&] {
+    keys[range.begin] = key_to[0];
+    keys[range.end - 1] = key_to[length - 1];
   };
   if (range.bits == 0 || length == 1) {  // sorted already, one key
     const std::uint64_t key = code(from[0].x, from[0].y);
-    for (std::size_t k = 0; k < length; ++k) put(range.begin + k, key, from[k]);
+    for (std::size_t k = 0; k < length; ++k) put(k, key, from[k]);
+    keep_ends();
     return;
   }
   // Key bits + place bits <= 40 + 16: a range here has at most
@@ -587,16 +616,18 @@ void BarnesHut::Workspace::sort_range(const bh::MortonCoder& code, const bh::Sor
   const std::uint64_t place_mask = (std::uint64_t{1} << place_bits) - 1;
   for (std::size_t k = 0; k < length; ++k) {
     const std::uint64_t p = packed[k];
-    put(range.begin + k, shared | (p >> place_bits), from[p & place_mask]);
+    put(k, shared | (p >> place_bits), from[p & place_mask]);
   }
+  keep_ends();
 }
 
 // The number of quadtree levels that the bodies [begin, end) share: their
 // node's cell is the smallest one holding them all (chains of single
 // children are skipped); kBits when they all share one Morton code.
-int BarnesHut::Workspace::level_of(std::uint32_t begin, std::uint32_t end) const {
-  const std::uint64_t first = keys[begin];
-  const std::uint64_t last = keys[end - 1];
+int BarnesHut::Workspace::level_of(std::uint32_t begin, std::uint32_t end,
+                                   const bh::SortedKeys& sorted) {
+  const std::uint64_t first = sorted[begin];
+  const std::uint64_t last = sorted[end - 1];
   return first == last ? kBits : (leading_zeros(first ^ last) - (64 - 2 * kBits)) / 2;
 }
 
@@ -607,7 +638,8 @@ int BarnesHut::Workspace::level_of(std::uint32_t begin, std::uint32_t end) const
 // cache), not over keys that are not. Below: three binary searches over the
 // keys side by side, each step a conditional move, not a branch.
 void BarnesHut::Workspace::quadrant_bounds(std::uint32_t begin, std::uint32_t end, int level,
-                                           bool in_top, std::uint32_t (&bounds)[5]) const {
+                                           bool in_top, const bh::SortedKeys& sorted,
+                                           std::uint32_t (&bounds)[5]) const {
   // The quadrant digit below the common prefix: bits 2 (kBits - 1 - level) + {0, 1}.
   const int shift = 2 * (kBits - 1 - level);
   const auto digit = [&](std::uint64_t key) { return (key >> shift) & 3u; };
@@ -629,12 +661,12 @@ void BarnesHut::Workspace::quadrant_bounds(std::uint32_t begin, std::uint32_t en
   while (length > 1) {
     const std::uint32_t half = length / 2;
     for (std::uint32_t d = 0; d < 3; ++d) {
-      first[d] = digit(keys[first[d] + half - 1]) <= d ? first[d] + half : first[d];
+      first[d] = digit(sorted[first[d] + half - 1]) <= d ? first[d] + half : first[d];
     }
     length -= half;
   }
   for (std::uint32_t d = 0; d < 3; ++d) {
-    bounds[d + 1] = first[d] + (digit(keys[first[d]]) <= d ? 1u : 0u);
+    bounds[d + 1] = first[d] + (digit(sorted[first[d]]) <= d ? 1u : 0u);
   }
 }
 
@@ -643,8 +675,9 @@ void BarnesHut::Workspace::quadrant_bounds(std::uint32_t begin, std::uint32_t en
 // many. bounds: the quadrants' body ranges; in_top: see quadrant_bounds.
 std::uint32_t BarnesHut::Workspace::split(bh::Tree& t, std::uint32_t index, std::uint32_t begin,
                                           std::uint32_t end, int level, bool in_top,
+                                          const bh::SortedKeys& sorted,
                                           std::uint32_t (&bounds)[5]) const {
-  quadrant_bounds(begin, end, level, in_top, bounds);
+  quadrant_bounds(begin, end, level, in_top, sorted, bounds);
   std::uint32_t children = 0;
   for (int q = 0; q < 4; ++q) children += bounds[q + 1] > bounds[q] ? 1 : 0;
   bh::Node& node = t.nodes[index];
@@ -708,7 +741,7 @@ void BarnesHut::Workspace::build_own_parts(std::size_t t) {
     // The splits' binary searches read the keys at scattered places, one
     // miss after another: fetch the part's keys first, all at once.
     for (std::uint32_t b = p.begin; b < p.end; b += 8) __builtin_prefetch(keys.data() + b);
-    build_part(parts[k], p.begin, p.end, p.depth, mine);
+    build_part(parts[k], p.begin, p.end, p.depth, all_keys(), mine);
     bodies += p.end - p.begin;
   }
   // With the subtrees this thread built with its sort ranges.
@@ -781,7 +814,7 @@ void BarnesHut::Workspace::copy_own_parts(std::size_t t) {
 void BarnesHut::Workspace::finish_top() {
   parent[0] = ~std::uint32_t{0};
   for (auto it = top.rbegin(); it != top.rend(); ++it) {
-    finish_node(tree, *it);
+    finish_node(tree, *it, all_keys());
     kernel_moments(*it, tree.moments[*it]);
     const bh::Node& node = tree.nodes[*it];
     for (std::uint32_t c = node.child; c < node.child + node.children; ++c) parent[c] = *it;
@@ -799,14 +832,14 @@ void BarnesHut::Workspace::plan(std::uint32_t index, std::uint32_t begin, std::u
     pending.push_back(bh::Pending{index, begin, end, tree_depth, range});
     return;
   }
-  const int level = level_of(begin, end);
+  const int level = level_of(begin, end, all_keys());
   if ((end - begin <= cutoff && !inside) || level == kBits) {
     pending.push_back(bh::Pending{index, begin, end, tree_depth, bh::kNoRange});
     return;
   }
   top.push_back(index);
   std::uint32_t bounds[5];
-  split(tree, index, begin, end, level, true, bounds);
+  split(tree, index, begin, end, level, true, all_keys(), bounds);
   std::uint32_t c = tree.nodes[index].child;
   for (int q = 0; q < 4; ++q) {
     if (bounds[q + 1] > bounds[q]) plan(c++, bounds[q], bounds[q + 1], tree_depth + 1, cutoff);
@@ -831,8 +864,9 @@ std::uint32_t BarnesHut::Workspace::range_with_sort(std::uint32_t begin, std::ui
 // leaf_size bodies or they all share one Morton code. The first node on each
 // path with at most group_size bodies (or a leaf) is a group.
 void BarnesHut::Workspace::build_node(bh::Tree& t, std::uint32_t index, std::uint32_t begin,
-                                      std::uint32_t end, int tree_depth, bool in_group) const {
-  const int level = level_of(begin, end);
+                                      std::uint32_t end, int tree_depth, bool in_group,
+                                      const bh::SortedKeys& sorted) const {
+  const int level = level_of(begin, end, sorted);
   t.depth = std::max(t.depth, tree_depth);
   const std::size_t count = end - begin;
   const bool leaf = count <= leaf_size || level == kBits;
@@ -849,29 +883,31 @@ void BarnesHut::Workspace::build_node(bh::Tree& t, std::uint32_t index, std::uin
     node.children = 0;
   } else {
     std::uint32_t bounds[5];
-    split(t, index, begin, end, level, false, bounds);  // reserved capacity: no reallocation
+    split(t, index, begin, end, level, false, sorted, bounds);  // reserved: no reallocation
     std::uint32_t c = t.nodes[index].child;
     for (int q = 0; q < 4; ++q) {
       if (bounds[q + 1] > bounds[q])
-        build_node(t, c++, bounds[q], bounds[q + 1], tree_depth + 1, in_group);
+        build_node(t, c++, bounds[q], bounds[q + 1], tree_depth + 1, in_group, sorted);
     }
   }
 }
 
 // Mass, centre of mass and moments of inner node `index` of t from its
 // children's (which must be finished), and its opening radius.
-void BarnesHut::Workspace::finish_node(bh::Tree& t, std::uint32_t index) const {
+void BarnesHut::Workspace::finish_node(bh::Tree& t, std::uint32_t index,
+                                       const bh::SortedKeys& sorted) const {
   bh::Node& node = t.nodes[index];
-  bh::Moments mo;
+  bh::Moments mo{};
   merge_moments(t, node, mo);
   t.moments[index] = mo;
-  set_opening_radius(node);
+  set_opening_radius(node, sorted);
 }
 
 // The moments and opening radii of a part that build_node made: its leaves'
 // from their bodies (the build kernels), then its inner nodes' from their
 // children, last node first (a node's children come after it).
-void BarnesHut::Workspace::finish_part(bh::Tree& t, SortScratch& buffers) const {
+void BarnesHut::Workspace::finish_part(bh::Tree& t, const bh::SortedKeys& sorted,
+                                       SortScratch& buffers) const {
   buffers.leaf_node.clear();
   buffers.leaf_begin.clear();
   buffers.leaf_end.clear();
@@ -904,10 +940,10 @@ void BarnesHut::Workspace::finish_part(bh::Tree& t, SortScratch& buffers) const 
     mo.hyyyy = sums[bh::kLeafHyyyy];
     node.mx = sums[bh::kLeafMx];
     node.my = sums[bh::kLeafMy];
-    set_opening_radius(node);
+    set_opening_radius(node, sorted);
   }
   for (std::size_t i = t.nodes.size(); i-- > 0;) {
-    if (t.nodes[i].children != 0) finish_node(t, static_cast<std::uint32_t>(i));
+    if (t.nodes[i].children != 0) finish_node(t, static_cast<std::uint32_t>(i), sorted);
   }
 }
 
@@ -958,10 +994,10 @@ void BarnesHut::Workspace::merge_moments(const bh::Tree& t, bh::Node& node, bh::
 // Barnes' modified criterion: accepted beyond size / theta + delta from the
 // centre of mass, delta its distance to the cell's centre. The cell: level
 // `level` of the root square, found from the common prefix.
-void BarnesHut::Workspace::set_opening_radius(bh::Node& node) const {
-  const int level = level_of(node.begin, node.end);
-  const std::uint64_t key = keys[node.begin];
-  const double size = std::ldexp(side, -level);
+void BarnesHut::Workspace::set_opening_radius(bh::Node& node, const bh::SortedKeys& sorted) const {
+  const int level = level_of(node.begin, node.end, sorted);
+  const std::uint64_t key = sorted[node.begin];
+  const double size = cell_size[static_cast<std::size_t>(level)];
   const double cx = x0 + (static_cast<double>(compact(key) >> (kBits - level)) + 0.5) * size;
   const double cy = y0 + (static_cast<double>(compact(key >> 1) >> (kBits - level)) + 0.5) * size;
   const double delta = std::sqrt((node.mx - cx) * (node.mx - cx) + (node.my - cy) * (node.my - cy));

@@ -139,12 +139,11 @@ struct UnsetAllocator : std::allocator<T> {
 template <typename T>
 using UnsetVector = std::vector<T, UnsetAllocator<T>>;
 
-// The root square's lower corner and side, and the heaviest mass.
+// The root square's lower corner and side.
 struct Square {
   double x0 = 0.0;
   double y0 = 0.0;
   double side = 1.0;
-  double max_mass = 0.0;
 };
 
 // What the walk reads of a node.
@@ -163,20 +162,22 @@ struct Node {
 // What the build needs besides: mass, second, third and fourth moments about
 // the centre of mass (qxx = sum m sx^2, ..., oxxy = sum m sx^2 sy, ...,
 // hxxxy = sum m sx^3 sy, ...).
+// No default values: Moments{} is all zeros, and a tree's moments are not
+// zeroed as it grows (UnsetVector): the build writes each node's.
 struct Moments {
-  double mass = 0.0;
-  double qxx = 0.0;
-  double qxy = 0.0;
-  double qyy = 0.0;
-  double oxxx = 0.0;
-  double oxxy = 0.0;
-  double oxyy = 0.0;
-  double oyyy = 0.0;
-  double hxxxx = 0.0;
-  double hxxxy = 0.0;
-  double hxxyy = 0.0;
-  double hxyyy = 0.0;
-  double hyyyy = 0.0;
+  double mass;
+  double qxx;
+  double qxy;
+  double qyy;
+  double oxxx;
+  double oxxy;
+  double oxyy;
+  double oyyy;
+  double hxxxx;
+  double hxxxy;
+  double hxxyy;
+  double hxyyy;
+  double hyyyy;
 };
 
 // Columns of equal length that grow together (the interaction lists).
@@ -218,7 +219,7 @@ struct Lists {
 // written by different threads side by side: each on its own cache lines.
 struct alignas(64) Tree {
   UnsetVector<Node> nodes;
-  std::vector<Moments> moments;
+  UnsetVector<Moments> moments;
   std::vector<std::uint32_t> groups;  // nodes whose bodies share a walk
   int depth = 0;
   std::size_t leaves = 0;
@@ -233,6 +234,16 @@ struct alignas(64) Tree {
 };
 
 inline constexpr std::uint32_t kNoRange = ~std::uint32_t{0};
+
+// The sorted Morton codes of the bodies a build step reads, by body rank:
+// the whole sorted array (first = 0), or a thread's copy of one sort range's
+// (first = the range's begin), which stays in its cache while it builds the
+// range's subtree and is never written out.
+struct SortedKeys {
+  const std::uint64_t* codes;
+  std::uint32_t first;
+  std::uint64_t operator[](std::uint32_t rank) const { return codes[rank - first]; }
+};
 
 // A subtree of the whole tree: its root's index there, its bodies and its
 // depth, and the sort range whose thread built it as it sorted it
@@ -281,7 +292,10 @@ struct BarnesHut::Workspace {
   BarnesHutStats stats;
 
   // Build.
-  bh::UnsetVector<std::uint64_t> keys;   // Morton codes, sorted
+  // Morton codes: in the caller's order during the first pass, then sorted
+  // (a range that builds its subtree with its sort keeps its keys in its
+  // thread's range_keys: here only its first and last, which the top reads).
+  bh::UnsetVector<std::uint64_t> keys;
   bh::UnsetVector<std::uint32_t> order;  // order[r]: the body of Morton rank r
   bh::UnsetVector<bh::Record> records;   // the bodies as the radix passes move them
   bh::UnsetVector<bh::Record> records_tmp;
@@ -305,6 +319,8 @@ struct BarnesHut::Workspace {
     std::vector<std::uint64_t> sizes;  // assign_greedy's
     std::vector<std::uint32_t> by_size;
     std::vector<std::uint64_t> loads;
+    // A range's sorted keys, while the thread builds its subtree.
+    bh::UnsetVector<std::uint64_t> range_keys;
   };
   std::vector<SortScratch> sort_scratch;
   bh::UnsetVector<double> sx;  // bodies in Morton order, then kLeafPadding zeros
@@ -344,7 +360,8 @@ struct BarnesHut::Workspace {
   double y0 = 0.0;
   double side = 1.0;
   double max_mass = 0.0;
-  double inv_theta = 0.0;  // 1 / theta, +inf for theta = 0
+  double inv_theta = 0.0;                         // 1 / theta, +inf for theta = 0
+  std::array<double, bh::kBits + 1> cell_size{};  // side / 2^level, level 0 to kBits
   std::size_t leaf_size = 1;
   std::size_t group_size = 1;
   std::size_t target_block = 0;  // float64: targets that re-test the opened leaves (0: none)
@@ -378,9 +395,9 @@ struct BarnesHut::Workspace {
   void build(std::span<const double> x, std::span<const double> y, std::span<const double> mass,
              int threads, double G);
   void size_buffers(std::size_t n);
-  void bound(std::span<const double> x, std::span<const double> y, std::span<const double> mass,
-             std::size_t t, std::size_t nt);
+  void bound(std::span<const double> x, std::span<const double> y, std::size_t t, std::size_t nt);
   bh::Square combine_bounds(std::size_t nt) const;
+  double heaviest(std::size_t nt) const;
   void first_pass(std::span<const double> x, std::span<const double> y,
                   std::span<const double> mass, const bh::MortonCoder& code, std::size_t t,
                   std::size_t nt);
@@ -394,26 +411,28 @@ struct BarnesHut::Workspace {
   void sort_own_ranges(const bh::MortonCoder& code, std::size_t t);
   bool builds_with_sort(const bh::SortRange& range) const;
   void build_part(bh::Tree& part, std::uint32_t begin, std::uint32_t end, int depth,
-                  SortScratch& buffers);
+                  const bh::SortedKeys& sorted, SortScratch& buffers);
   void plan_tree();
   void build_own_parts(std::size_t t);
   void place_parts();
   void copy_own_parts(std::size_t t);
   void finish_top();
-  int level_of(std::uint32_t begin, std::uint32_t end) const;
+  bh::SortedKeys all_keys() const { return bh::SortedKeys{keys.data(), 0}; }
+  static int level_of(std::uint32_t begin, std::uint32_t end, const bh::SortedKeys& sorted);
   void quadrant_bounds(std::uint32_t begin, std::uint32_t end, int level, bool in_top,
-                       std::uint32_t (&bounds)[5]) const;
+                       const bh::SortedKeys& sorted, std::uint32_t (&bounds)[5]) const;
   std::uint32_t split(bh::Tree& t, std::uint32_t index, std::uint32_t begin, std::uint32_t end,
-                      int level, bool in_top, std::uint32_t (&bounds)[5]) const;
+                      int level, bool in_top, const bh::SortedKeys& sorted,
+                      std::uint32_t (&bounds)[5]) const;
   void plan(std::uint32_t index, std::uint32_t begin, std::uint32_t end, int tree_depth,
             std::size_t cutoff);
   std::uint32_t range_with_sort(std::uint32_t begin, std::uint32_t end, bool& inside) const;
   void build_node(bh::Tree& t, std::uint32_t index, std::uint32_t begin, std::uint32_t end,
-                  int tree_depth, bool in_group) const;
-  void finish_node(bh::Tree& t, std::uint32_t index) const;
-  void finish_part(bh::Tree& t, SortScratch& buffers) const;
+                  int tree_depth, bool in_group, const bh::SortedKeys& sorted) const;
+  void finish_node(bh::Tree& t, std::uint32_t index, const bh::SortedKeys& sorted) const;
+  void finish_part(bh::Tree& t, const bh::SortedKeys& sorted, SortScratch& buffers) const;
   static void merge_moments(const bh::Tree& t, bh::Node& node, bh::Moments& mo);
-  void set_opening_radius(bh::Node& node) const;
+  void set_opening_radius(bh::Node& node, const bh::SortedKeys& sorted) const;
 
   // barnes_hut_moments.cpp: node i's moments as the kernels read them
   // (node64, or node32 in the frame), and bodies' float32 masses.
