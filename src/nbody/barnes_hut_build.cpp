@@ -583,13 +583,18 @@ void BarnesHut::Workspace::sort_range(const bh::MortonCoder& code, const bh::Sor
     buffers.range_keys.resize(length);
     key_to = buffers.range_keys.data();
   }
-  const auto put = [&](std::size_t k, std::uint64_t key, const bh::Record& r) {
+  // The range's places in the outputs, taken once: a store through order
+  // could change range.begin, for all the compiler knows.
+  std::uint32_t* const order_to = order.data() + range.begin;
+  double* const x_to = sx.data() + range.begin;
+  double* const y_to = sy.data() + range.begin;
+  double* const m_to = sm.data() + range.begin;
+  const auto put = [=](std::size_t k, std::uint64_t key, const bh::Record& r) {
     key_to[k] = key;
-    const std::size_t rank = range.begin + k;
-    order[rank] = r.index;
-    sx[rank] = r.x;
-    sy[rank] = r.y;
-    sm[rank] = r.m;
+    order_to[k] = r.index;
+    x_to[k] = r.x;
+    y_to[k] = r.y;
+    m_to[k] = r.m;
   };
   const auto keep_ends = [&] {
     keys[range.begin] = key_to[0];
