@@ -1081,6 +1081,38 @@ TEST(NbodyBarnesHut, DenseAndCoincidentRunsSortTheSameForAnyThreadCount) {
   EXPECT_LT(sampled_rms_error(s, one, plummer(0.5), 211), 1e-3);
 }
 
+TEST(NbodyBarnesHut, LeavesOfAnySizeAreTheSameForAnyThreadCount) {
+  // A leaf's bodies are in index order. At 16 threads the sort's ranges
+  // here are small enough that a leaf of 64 bodies, or of all of them, spans
+  // several (each in index order on its own) where at 1 thread it lies in
+  // one; a leaf of one body splits dense cells to the last key bit. The
+  // same bits for any thread count at every leaf and group size, and a leaf
+  // that holds every body is the direct sum.
+  System s = disk(5000, 41, 30.0);
+  const System clump = disk(1500, 42, 0.01, 12.0, -3.0);
+  s.x.insert(s.x.end(), clump.x.begin(), clump.x.end());
+  s.y.insert(s.y.end(), clump.y.begin(), clump.y.end());
+  s.m.insert(s.m.end(), clump.m.begin(), clump.m.end());
+  for (const auto& [leaf, group] :
+       {std::pair{1, 1}, std::pair{4, 16}, std::pair{64, 500}, std::pair{100000, 128}}) {
+    nb::BarnesHutOptions b;
+    static_cast<nb::Options&>(b) = plummer(0.05);
+    b.leaf_size = leaf;
+    b.group_size = group;
+    b.threads = 1;
+    nb::BarnesHut solver;
+    Field one{std::vector<double>(s.size()), std::vector<double>(s.size())};
+    solver.accelerations(s.x, s.y, s.m, one.ax, one.ay, b);
+    SCOPED_TRACE("leaf_size " + std::to_string(leaf) + ", group_size " + std::to_string(group));
+    expect_same_for_threads(solver, s, b, one, solver.stats(), {2, 3, 7, 16});
+    EXPECT_LT(sampled_rms_error(s, one, plummer(0.05), 97), 1e-3);
+    if (leaf == 100000) {
+      EXPECT_EQ(solver.stats().nodes, 1u);
+      EXPECT_LT(sampled_rms_error(s, one, plummer(0.05), 97), 1e-12);
+    }
+  }
+}
+
 TEST(NbodyBarnesHut, BuildPhasesShareOutTheBuild) {
   // Eight phases in order, three of them serial (one thread, the others
   // waiting); their wall times lie within the build's.

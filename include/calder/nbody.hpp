@@ -189,19 +189,20 @@ struct BarnesHutStats {
 // A Barnes-Hut solver that keeps its tree and buffers between calls (the
 // allocation-free way to evaluate accelerations every step).
 //
-// Build: bounding square; Morton codes (2 x 24 bits); a radix sort (ties in
-// index order: one order, whatever the number of threads that split the
-// work); a quadtree of the sorted order, each node the smallest cell holding
-// its bodies, split until it has at most leaf_size bodies (or all share one
-// code: coincident bodies); per node mass, centre of mass and second to
-// fourth moments. Walk: for each group of <= group_size bodies (groups that
-// share a parent walk the tree once, together), the accepted nodes and the
-// bodies of opened leaves; the kernels sum the nodes' multipole expansions to
-// fourth order (Plummer law; monopoles for the clamped laws, which are not
-// harmonic) and the bodies' direct pulls for the whole group, float32 lists
-// relative to the group's centre. Nodes far from a group (beyond 2.8 / theta
-// of its half sides) are summed at 4 x 4 points of its square and
-// interpolated: an error below the expansion's at any theta. The build runs
+// Build: bounding square; Morton codes (2 x 24 bits); a radix sort down to
+// the leaves (leaves in Morton order, a leaf's bodies in index order: one
+// order, whatever the number of threads that split the work); a quadtree of
+// that order, each node the smallest cell holding its bodies, split until it
+// has at most leaf_size bodies (or all share one code: coincident bodies);
+// per node mass, centre of mass and second to fourth moments. Walk: for
+// each group of <= group_size bodies (groups that share a parent walk the
+// tree once, together), the accepted nodes and the bodies of opened leaves;
+// the kernels sum the nodes' multipole expansions to fourth order (Plummer
+// law; monopoles for the clamped laws, which are not harmonic) and the
+// bodies' direct pulls for the whole group, float32 lists relative to the
+// group's centre. Nodes far from a group (beyond 2.8 / theta of its half
+// sides) are summed at 4 x 4 points of its square and interpolated: an
+// error below the expansion's at any theta. The build runs
 // in one parallel region; the walk hands each thread a run of groups of
 // equal cost (the interactions the solver's last call measured for those
 // bodies; by bodies on a first call). Each body's sum is computed by one

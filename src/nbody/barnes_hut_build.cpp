@@ -2,11 +2,12 @@
 // Barnes-Hut, the build: bounding square; 48-bit Morton codes (24 bits per
 // axis); their radix sort (8-bit digits, the first 10 bits wide for many
 // bodies: the threads split the bodies, each carried as a 32-byte record, by
-// their top digits until the ranges fit in cache, then sort ranges on their
-// own and write them out in Morton order; the order is unique, so the same
-// for any thread count); the tree, depth first, each node the smallest
-// quadtree cell holding its bodies; mass, centre of mass and second to
-// fourth moments bottom up (parallel axis theorem). A sort range of more
+// their top digits until the ranges fit in cache, then order ranges on
+// their own down to the leaves and write them out: leaves in Morton order, a
+// leaf's bodies in index order; that order depends on the bodies alone, so
+// it is the same for any thread count); the tree, depth first, each node
+// the smallest quadtree cell holding its bodies; mass, centre of mass and
+// second to fourth moments bottom up (parallel axis theorem). A sort range of more
 // than group_size bodies is a subtree, which the thread that sorted it
 // builds at once, from keys and bodies still in its cache; the top of the
 // tree is then split serially down to those and to about kSubtrees
@@ -109,87 +110,73 @@ inline void end_streams() {
 #endif
 }
 
-// Sorts values[0, length) in place by insertion, reading them from `from`
-// (which may be `values`): fast where few are out of order.
-inline void insertion_sort(const std::uint64_t* from, std::uint64_t* values, std::size_t length) {
-  for (std::size_t i = 0; i < length; ++i) {
-    const std::uint64_t value = from[i];
-    std::size_t j = i;
-    for (; j > 0 && values[j - 1] > value; --j) values[j] = values[j - 1];
-    values[j] = value;
+// Orders in[0, length) into out by leaf. The values are packed keys: `bits`
+// key bits (even: whole levels, below a cell that holds them all and more
+// than leaf_size of them), then place_bits of their place in `in`. A value's
+// leaf cell is the largest cell below that one that holds it and at most
+// leaf_size values; leaves go in Morton order and each keeps its values in
+// their order in `in` (for a sort range, index order). That order depends on
+// the bodies alone, not on how the sort was split into ranges, and the tree
+// reads no finer order: its nodes are cells of more than leaf_size bodies,
+// split by quadrant. One counting pass by the next b bits (cells of about
+// four values), the counts summed up level by level into a pyramid; the
+// leaves found from its top; then one stable pass into out, the cells of one
+// leaf writing through one cursor. A cell of the pass that holds more than
+// leaf_size values is ordered the same way by the bits below (`in` is spare
+// by then). levels: the thread's scratch, one entry a level of recursion.
+void leaf_order(std::uint64_t* in, std::uint64_t* out, std::size_t length, int bits, int place_bits,
+                std::size_t leaf_size, bh::LeafLevel* levels) {
+  int b = 2;
+  while (b + 2 <= bits && b + 2 <= bh::kMaxLeafBits && (std::size_t{4} << (b + 2)) <= length) {
+    b += 2;
   }
-}
-
-// counts[0, n) (n a power of two) to their exclusive prefix sums: each
-// bucket's start. Four at a time where the processor has SSE2 (the buckets
-// outnumber the values that a sort counts).
-inline void starts_from_counts(std::uint32_t* counts, std::size_t n) {
-#if defined(__SSE2__)
-  if (n >= 4) {
-    __m128i carry = _mm_setzero_si128();
-    for (std::size_t b = 0; b < n; b += 4) {
-      auto* at = reinterpret_cast<__m128i*>(counts + b);
-      const __m128i c = _mm_loadu_si128(at);
-      __m128i sum = _mm_add_epi32(c, _mm_slli_si128(c, 4));  // inclusive sums of the four
-      sum = _mm_add_epi32(sum, _mm_slli_si128(sum, 8));
-      _mm_storeu_si128(at, _mm_add_epi32(_mm_slli_si128(sum, 4), carry));
-      carry = _mm_add_epi32(carry, _mm_shuffle_epi32(sum, 0xFF));
+  const int top = b / 2;  // the pyramid's levels below its root: 0 to top
+  const int shift = place_bits + bits - b;
+  const std::uint64_t mask = (std::uint64_t{1} << b) - 1;
+  const auto level_at = [](int h) { return ((std::size_t{1} << (2 * h)) - 1) / 3; };
+  bh::LeafLevel& s = levels[0];
+  s.counts.assign(level_at(top + 1), 0u);
+  std::uint32_t* finest = s.counts.data() + level_at(top);
+  for (std::size_t i = 0; i < length; ++i) ++finest[(in[i] >> shift) & mask];
+  for (int h = top - 1; h >= 0; --h) {
+    std::uint32_t* cells = s.counts.data() + level_at(h);
+    const std::uint32_t* below = s.counts.data() + level_at(h + 1);
+    for (std::size_t c = 0; c < (std::size_t{1} << (2 * h)); ++c) {
+      cells[c] = below[4 * c] + below[4 * c + 1] + below[4 * c + 2] + below[4 * c + 3];
     }
-    return;
   }
-#endif
+  // The leaves, depth first in Morton order: each gets a cursor, and its
+  // cells of the pass the cursor's number.
+  s.slot.resize(std::size_t{1} << b);
+  s.cursor.clear();
+  s.dense.clear();
+  s.stack.assign(1, std::pair<int, std::uint32_t>{0, 0u});
   std::uint32_t offset = 0;
-  for (std::size_t b = 0; b < n; ++b) {
-    const std::uint32_t here = counts[b];
-    counts[b] = offset;
-    offset += here;
-  }
-}
-
-// Sorts `length` distinct values in place, with `spare` (as long) and the
-// thread's `counts` (2^kMaxBucketBits) and lists of large buckets (one a
-// level). One counting pass into spare by the bits just below the values'
-// common prefix, about two buckets a value, so most buckets hold one value;
-// buckets of more than kInsertion values sorted the same way (from spare,
-// with values as theirs); then one insertion pass back into values, which
-// moves only the few values that shared a small bucket.
-void sort_in_cache(std::uint64_t* values, std::uint64_t* spare, std::size_t length,
-                   std::uint32_t* counts,
-                   std::vector<std::pair<std::uint32_t, std::uint32_t>>* large, int level) {
-  constexpr std::size_t kInsertion = 32;
-  if (length <= kInsertion) {
-    insertion_sort(values, values, length);
-    return;
-  }
-  std::uint64_t varying = 0;  // the bits in which some value differs from the first
-  for (std::size_t i = 1; i < length; ++i) varying |= values[i] ^ values[0];
-  const int top = 64 - leading_zeros(varying);        // varying != 0: distinct values
-  const int wanted = 65 - leading_zeros(length - 1);  // 2 * length <= 2^wanted
-  const int bits = std::min({wanted, bh::kMaxBucketBits, top});
-  const int shift = top - bits;
-  const std::size_t buckets = std::size_t{1} << bits;
-  const std::uint64_t mask = buckets - 1;
-  const auto bucket = [&](std::uint64_t value) { return (value >> shift) & mask; };
-  std::fill(counts, counts + buckets, 0u);
-  std::uint32_t most = 0;
-  for (std::size_t i = 0; i < length; ++i) most = std::max(most, ++counts[bucket(values[i])]);
-  // The large buckets, where there are any; then each bucket's start.
-  std::vector<std::pair<std::uint32_t, std::uint32_t>>& mine = large[level];
-  mine.clear();
-  if (most > kInsertion) {
-    std::uint32_t offset = 0;
-    for (std::size_t b = 0; b < buckets; ++b) {
-      if (counts[b] > kInsertion) mine.emplace_back(offset, offset + counts[b]);
-      offset += counts[b];
+  while (!s.stack.empty()) {
+    const auto [h, c] = s.stack.back();
+    s.stack.pop_back();
+    const std::uint32_t count = s.counts[level_at(h) + c];
+    if (count == 0) continue;
+    if (count > leaf_size && h < top) {
+      for (std::uint32_t q = 4; q-- > 0;) s.stack.emplace_back(h + 1, 4 * c + q);
+      continue;
     }
+    if (count > leaf_size) s.dense.emplace_back(offset, count);
+    const int below = 2 * (top - h);
+    std::fill_n(s.slot.data() + (std::size_t{c} << below), std::size_t{1} << below,
+                static_cast<std::uint32_t>(s.cursor.size()));
+    s.cursor.push_back(offset);
+    offset += count;
   }
-  starts_from_counts(counts, buckets);
-  for (std::size_t i = 0; i < length; ++i) spare[counts[bucket(values[i])]++] = values[i];
-  for (std::size_t k = 0; k < mine.size(); ++k) {  // mine may not grow (deeper levels' lists)
-    const auto [first, end] = mine[k];
-    sort_in_cache(spare + first, values + first, end - first, counts, large, level + 1);
+  for (std::size_t i = 0; i < length; ++i) {
+    const std::uint64_t v = in[i];
+    out[s.cursor[s.slot[(v >> shift) & mask]]++] = v;
   }
-  insertion_sort(spare, values, length);
+  if (bits == b) return;  // a dense cell's values share their key: in place order
+  for (const auto& [first, count] : s.dense) {
+    leaf_order(out + first, in + first, count, bits - b, place_bits, leaf_size, levels + 1);
+    std::copy(in + first, in + first + count, out + first);
+  }
 }
 
 }  // namespace
@@ -458,7 +445,7 @@ void BarnesHut::Workspace::sort_own_ranges(const bh::MortonCoder& code, std::siz
     done += range.end - range.begin;
     if (builds_with_sort(range)) {
       build_part(range_parts[r], range.begin, range.end, 0,
-                 bh::SortedKeys{mine.range_keys.data(), range.begin}, mine);
+                 bh::SortedKeys{mine.range_keys.data(), range.begin}, mine, false);
       built += range.end - range.begin;
     }
   }
@@ -479,24 +466,50 @@ bool BarnesHut::Workspace::builds_with_sort(const bh::SortRange& range) const {
 // The subtree of bodies [begin, end) into `part` (numbered from 0, its root
 // at `depth`): nodes, moments and opening radii, and float32 masses.
 void BarnesHut::Workspace::build_part(bh::Tree& part, std::uint32_t begin, std::uint32_t end,
-                                      int depth, const bh::SortedKeys& sorted,
-                                      SortScratch& buffers) {
+                                      int depth, const bh::SortedKeys& sorted, SortScratch& buffers,
+                                      bool several_ranges) {
   part.reset();
   part.nodes.reserve(2 * std::size_t{end - begin});
   part.moments.reserve(2 * std::size_t{end - begin});
   build_node(part, 0, begin, end, depth, false, sorted);
+  if (several_ranges) leaves_in_index_order(part, buffers.leaf_bodies);
   finish_part(part, sorted, buffers);
   if (single) float_masses(begin, end);
 }
 
-// Sorts the bodies by key, equal keys in index order, called by every
+// Each leaf's bodies in index order, as leaf_order leaves a leaf inside
+// one sort range: a leaf of a part built after the sort may hold the bodies
+// of several small ranges, each in index order on its own (the arrays are
+// the whole sort's; `bodies`: the thread's scratch).
+void BarnesHut::Workspace::leaves_in_index_order(const bh::Tree& part,
+                                                 std::vector<bh::LeafBody>& bodies) {
+  for (const bh::Node& node : part.nodes) {
+    if (node.children != 0 || std::is_sorted(order.begin() + node.begin, order.begin() + node.end))
+      continue;
+    bodies.clear();
+    for (std::uint32_t r = node.begin; r < node.end; ++r) {
+      bodies.push_back(bh::LeafBody{keys[r], sx[r], sy[r], sm[r], order[r]});
+    }
+    std::sort(bodies.begin(), bodies.end(),
+              [](const bh::LeafBody& a, const bh::LeafBody& b) { return a.index < b.index; });
+    for (std::uint32_t r = node.begin; r < node.end; ++r) {
+      const bh::LeafBody& body = bodies[r - node.begin];
+      keys[r] = body.key;
+      sx[r] = body.x;
+      sy[r] = body.y;
+      sm[r] = body.m;
+      order[r] = body.index;
+    }
+  }
+}
+
+// Sorts the bodies by key down to the leaves (leaf_order), called by every
 // thread t of a team of nt after first_pass. A most significant digit first
 // radix sort: the team splits a range by its next digit (a stable counting
 // pass, thread slices in order) while it is larger than team_split_from,
-// then the ranges go to threads (assign_greedy), each sorted on its own by
-// its remaining bits (sort_own_ranges, sort_range). The sorted order is
-// unique (key, then index), so it does not depend on the number of threads
-// or on how the work was split.
+// then the ranges go to threads (assign_greedy), each ordered on its own by
+// its remaining bits (sort_own_ranges, sort_range). The order depends on the
+// bodies alone, not on the number of threads or on how the work was split.
 void BarnesHut::Workspace::sort_keys(const bh::MortonCoder& code, std::size_t t, std::size_t nt) {
   for (std::size_t r = 0; r < sort_large.size(); ++r) {
     const bh::SortRange range = sort_large[r];  // a copy: the single below may grow the list
@@ -566,12 +579,14 @@ void BarnesHut::Workspace::list_ranges(const bh::SortRange& range, int width,
   if (range_parts.size() < sort_small.size()) range_parts.resize(sort_small.size());
 }
 
-// One thread sorts `range` by its remaining bits and writes its bodies in
-// Morton order. Each key's remaining bits and the record's place in the
-// range are packed in one integer (distinct, and in index order for equal
-// keys: the passes are stable), sorted in the thread's buffers; the records
-// are then read in that order, from cache, and each key put together again
-// from the range's shared bits and its packed ones. The keys of a range
+// One thread orders `range` by its remaining bits down to the leaves
+// (leaf_order) and writes its bodies out in that order. Each key's remaining
+// bits and the record's place in the range (index order: the passes are
+// stable) are packed in one integer, ordered in the thread's buffers; the
+// records are then read in that order, from cache, and each key put
+// together again from the range's shared bits and its packed ones. A range
+// of at most leaf_size bodies (or of one key) is one leaf at most, or part
+// of one: its bodies stay in index order. The keys of a range
 // that builds its subtree with its sort stay in the thread's range_keys: of
 // them, only the first and the last are read after (the top of the tree).
 void BarnesHut::Workspace::sort_range(const bh::MortonCoder& code, const bh::SortRange& range,
@@ -600,9 +615,8 @@ void BarnesHut::Workspace::sort_range(const bh::MortonCoder& code, const bh::Sor
     keys[range.begin] = key_to[0];
     keys[range.end - 1] = key_to[length - 1];
   };
-  if (range.bits == 0 || length == 1) {  // sorted already, one key
-    const std::uint64_t key = code(from[0].x, from[0].y);
-    for (std::size_t k = 0; k < length; ++k) put(k, key, from[k]);
+  if (range.bits == 0 || length <= leaf_size) {  // one key, or one leaf at most: index order
+    for (std::size_t k = 0; k < length; ++k) put(k, code(from[k].x, from[k].y), from[k]);
     keep_ends();
     return;
   }
@@ -615,12 +629,12 @@ void BarnesHut::Workspace::sort_range(const bh::MortonCoder& code, const bh::Sor
   std::vector<std::uint64_t>& spare = buffers.values[1];
   packed.resize(length);
   spare.resize(length);
-  buffers.counts.resize(std::size_t{1} << bh::kMaxBucketBits);
   bh::build_kernels().packed_keys(from, length, code, key_mask, place_bits, packed.data());
-  sort_in_cache(packed.data(), spare.data(), length, buffers.counts.data(), buffers.large, 0);
+  leaf_order(packed.data(), spare.data(), length, range.bits, place_bits, leaf_size,
+             buffers.leaf_levels.data());
   const std::uint64_t place_mask = (std::uint64_t{1} << place_bits) - 1;
   for (std::size_t k = 0; k < length; ++k) {
-    const std::uint64_t p = packed[k];
+    const std::uint64_t p = spare[k];
     put(k, shared | (p >> place_bits), from[p & place_mask]);
   }
   keep_ends();
@@ -634,6 +648,16 @@ int BarnesHut::Workspace::level_of(std::uint32_t begin, std::uint32_t end,
   const std::uint64_t first = sorted[begin];
   const std::uint64_t last = sorted[end - 1];
   return first == last ? kBits : (leading_zeros(first ^ last) - (64 - 2 * kBits)) / 2;
+}
+
+// The same for a leaf, whose bodies are in index order, not by key
+// (leaf_order): every key counts.
+int BarnesHut::Workspace::leaf_level(std::uint32_t begin, std::uint32_t end,
+                                     const bh::SortedKeys& sorted) {
+  const std::uint64_t first = sorted[begin];
+  std::uint64_t differ = 0;
+  for (std::uint32_t r = begin + 1; r < end; ++r) differ |= sorted[r] ^ first;
+  return differ == 0 ? kBits : (leading_zeros(differ) - (64 - 2 * kBits)) / 2;
 }
 
 // Where the quadrants of the bodies [begin, end) (common prefix `level`,
@@ -746,7 +770,7 @@ void BarnesHut::Workspace::build_own_parts(std::size_t t) {
     // The splits' binary searches read the keys at scattered places, one
     // miss after another: fetch the part's keys first, all at once.
     for (std::uint32_t b = p.begin; b < p.end; b += 8) __builtin_prefetch(keys.data() + b);
-    build_part(parts[k], p.begin, p.end, p.depth, all_keys(), mine);
+    build_part(parts[k], p.begin, p.end, p.depth, all_keys(), mine, true);
     bodies += p.end - p.begin;
   }
   // With the subtrees this thread built with its sort ranges.
@@ -1000,7 +1024,8 @@ void BarnesHut::Workspace::merge_moments(const bh::Tree& t, bh::Node& node, bh::
 // centre of mass, delta its distance to the cell's centre. The cell: level
 // `level` of the root square, found from the common prefix.
 void BarnesHut::Workspace::set_opening_radius(bh::Node& node, const bh::SortedKeys& sorted) const {
-  const int level = level_of(node.begin, node.end, sorted);
+  const int level = node.children == 0 ? leaf_level(node.begin, node.end, sorted)
+                                       : level_of(node.begin, node.end, sorted);
   const std::uint64_t key = sorted[node.begin];
   const double size = cell_size[static_cast<std::size_t>(level)];
   const double cx = x0 + (static_cast<double>(compact(key) >> (kBits - level)) + 0.5) * size;

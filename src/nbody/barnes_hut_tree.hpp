@@ -33,13 +33,13 @@ inline constexpr std::size_t kRadixBuckets = std::size_t{1} << kRadixBits;
 // The first pass's digit: kRadixBits, or from kWideFirstFrom bodies on
 // kWideFirstBits, so that the ranges it leaves stay small enough to sort in a
 // core's cache (a wider digit spreads the pass's writes over more places).
-// The sorted order is the same whatever the digits.
+// The order is the same whatever the digits.
 inline constexpr int kWideFirstBits = 10;
 inline constexpr std::size_t kWideFirstFrom = std::size_t{1} << 21;
 inline constexpr std::size_t kFirstBuckets = std::size_t{1} << kWideFirstBits;  // at most
-// Ranges of the sort up to this many bodies are sorted by one thread: their
+// Ranges of the sort up to this many bodies are ordered by one thread: their
 // keys packed with their places (8 bytes a body, two arrays, and the
-// counts: 1.25 MB, in a core's cache) and the bodies then read in that
+// counts: about 1.1 MB, in a core's cache) and the bodies then read in that
 // order; larger ones are split by the team. So that the ranges share out
 // evenly, a range is also split by the team while it holds more than
 // 1 / kRangesPerThread of a thread's share of the bodies (but not below
@@ -47,11 +47,28 @@ inline constexpr std::size_t kFirstBuckets = std::size_t{1} << kWideFirstBits;  
 inline constexpr std::size_t kSortInCache = 65536;
 inline constexpr std::size_t kRangesPerThread = 8;
 inline constexpr std::size_t kMinTeamSplit = 256;
-// The in-cache sort's counting passes: at most 2^16 buckets (256 KB of
-// counts), each pass on at least 7 bits of the 64 a packed key has, so at
-// most 10 levels.
-inline constexpr int kMaxBucketBits = 16;
-inline constexpr int kSortLevels = 10;
+// The leaf order's counting pass (leaf_order): at most 2^14 cells (a
+// pyramid of 87 KB of counts); a cell of more than leaf_size bodies is
+// ordered again by the bits below, at most kBits levels deep.
+inline constexpr int kMaxLeafBits = 14;
+
+// A body of a leaf being put in index order (leaves_in_index_order).
+struct LeafBody {
+  std::uint64_t key;
+  double x;
+  double y;
+  double m;
+  std::uint32_t index;
+};
+
+// leaf_order's scratch for one level of its recursion.
+struct LeafLevel {
+  std::vector<std::uint32_t> counts;  // the pyramid, coarsest level first
+  std::vector<std::uint32_t> slot;    // each cell of the pass: its leaf's cursor
+  std::vector<std::uint32_t> cursor;  // each leaf's next place
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> dense;  // cells to order again
+  std::vector<std::pair<int, std::uint32_t>> stack;            // cells to visit
+};
 // The first radix pass writes each bucket's records this many at a time
 // (256 bytes: four cache lines; 64 KB of staging a thread, 256 KB with the
 // wide first digit, in its L2).
@@ -306,9 +323,8 @@ struct BarnesHut::Workspace {
   std::size_t team_split_from = 0;         // ranges larger than this are split by the team
   struct alignas(64) SortScratch {         // a thread's buffers for its ranges
     std::vector<std::uint64_t> values[2];  // a range's keys and local indices, packed
-    std::vector<std::uint32_t> counts;     // their counting passes'
-    std::vector<std::pair<std::uint32_t, std::uint32_t>>
-        large[bh::kSortLevels];            // buckets to sort again
+    std::vector<bh::LeafLevel> leaf_levels = std::vector<bh::LeafLevel>(bh::kBits + 1);
+    std::vector<bh::LeafBody> leaf_bodies;
     bh::UnsetVector<bh::Record> stage;     // the first pass's records on their way out
     std::uint8_t fill[bh::kFirstBuckets];  // how many of each bucket's are in stage
     std::uint8_t want[bh::kFirstBuckets];  // and how many it writes out next
@@ -411,7 +427,8 @@ struct BarnesHut::Workspace {
   void sort_own_ranges(const bh::MortonCoder& code, std::size_t t);
   bool builds_with_sort(const bh::SortRange& range) const;
   void build_part(bh::Tree& part, std::uint32_t begin, std::uint32_t end, int depth,
-                  const bh::SortedKeys& sorted, SortScratch& buffers);
+                  const bh::SortedKeys& sorted, SortScratch& buffers, bool several_ranges);
+  void leaves_in_index_order(const bh::Tree& part, std::vector<bh::LeafBody>& bodies);
   void plan_tree();
   void build_own_parts(std::size_t t);
   void place_parts();
@@ -419,6 +436,7 @@ struct BarnesHut::Workspace {
   void finish_top();
   bh::SortedKeys all_keys() const { return bh::SortedKeys{keys.data(), 0}; }
   static int level_of(std::uint32_t begin, std::uint32_t end, const bh::SortedKeys& sorted);
+  static int leaf_level(std::uint32_t begin, std::uint32_t end, const bh::SortedKeys& sorted);
   void quadrant_bounds(std::uint32_t begin, std::uint32_t end, int level, bool in_top,
                        const bh::SortedKeys& sorted, std::uint32_t (&bounds)[5]) const;
   std::uint32_t split(bh::Tree& t, std::uint32_t index, std::uint32_t begin, std::uint32_t end,
