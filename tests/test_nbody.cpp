@@ -61,6 +61,14 @@ System disk(std::size_t n, std::uint64_t seed, double r = 50.0, double cx = 0.0,
   return s;
 }
 
+// s's bodies, then more's.
+System with(System s, const System& more) {
+  s.x.insert(s.x.end(), more.x.begin(), more.x.end());
+  s.y.insert(s.y.end(), more.y.begin(), more.y.end());
+  s.m.insert(s.m.end(), more.m.begin(), more.m.end());
+  return s;
+}
+
 // n bodies in 6 Plummer-like clumps (scale 1 to 5) spread over 100 x 100.
 System clusters(std::size_t n, std::uint64_t seed) {
   std::mt19937_64 g(seed);
@@ -1061,11 +1069,7 @@ TEST(NbodyBarnesHut, DenseAndCoincidentRunsSortTheSameForAnyThreadCount) {
   // digits (a bucket of the first radix pass that the team splits again at
   // 16 threads), and a sparse disk around them. The same tree and the same
   // bits for any number of threads, and accurate sums.
-  System s = disk(4000, 31, 400.0);
-  const System clump = disk(24000, 32, 3.0, 100.0, -50.0);
-  s.x.insert(s.x.end(), clump.x.begin(), clump.x.end());
-  s.y.insert(s.y.end(), clump.y.begin(), clump.y.end());
-  s.m.insert(s.m.end(), clump.m.begin(), clump.m.end());
+  System s = with(disk(4000, 31, 400.0), disk(24000, 32, 3.0, 100.0, -50.0));
   for (std::size_t i = 0; i < 64 * 300; ++i) {
     s.x.push_back(-200.0 + 25.0 * static_cast<double>(i % 8));
     s.y.push_back(150.0 + 25.0 * static_cast<double>((i / 8) % 8));
@@ -1088,11 +1092,7 @@ TEST(NbodyBarnesHut, LeavesOfAnySizeAreTheSameForAnyThreadCount) {
   // one; a leaf of one body splits dense cells to the last key bit. The
   // same bits for any thread count at every leaf and group size, and a leaf
   // that holds every body is the direct sum.
-  System s = disk(5000, 41, 30.0);
-  const System clump = disk(1500, 42, 0.01, 12.0, -3.0);
-  s.x.insert(s.x.end(), clump.x.begin(), clump.x.end());
-  s.y.insert(s.y.end(), clump.y.begin(), clump.y.end());
-  s.m.insert(s.m.end(), clump.m.begin(), clump.m.end());
+  const System s = with(disk(5000, 41, 30.0), disk(1500, 42, 0.01, 12.0, -3.0));
   for (const auto& [leaf, group] :
        {std::pair{1, 1}, std::pair{4, 16}, std::pair{64, 500}, std::pair{100000, 128}}) {
     nb::BarnesHutOptions b;
