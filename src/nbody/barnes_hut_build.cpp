@@ -137,7 +137,8 @@ void leaf_order(std::uint64_t* in, std::uint64_t* out, std::size_t length, int b
   bh::LeafLevel& s = levels[0];
   s.counts.assign(level_at(top + 1), 0u);
   std::uint32_t* finest = s.counts.data() + level_at(top);
-  for (std::size_t i = 0; i < length; ++i) ++finest[(in[i] >> shift) & mask];
+  const auto cell = [&](std::uint64_t v) { return static_cast<std::size_t>((v >> shift) & mask); };
+  for (std::size_t i = 0; i < length; ++i) ++finest[cell(in[i])];
   for (int h = top - 1; h >= 0; --h) {
     std::uint32_t* cells = s.counts.data() + level_at(h);
     const std::uint32_t* below = s.counts.data() + level_at(h + 1);
@@ -170,7 +171,7 @@ void leaf_order(std::uint64_t* in, std::uint64_t* out, std::size_t length, int b
   }
   for (std::size_t i = 0; i < length; ++i) {
     const std::uint64_t v = in[i];
-    out[s.cursor[s.slot[(v >> shift) & mask]]++] = v;
+    out[s.cursor[s.slot[cell(v)]]++] = v;
   }
   if (bits == b) return;  // a dense cell's values share their key: in place order
   for (const auto& [first, count] : s.dense) {
@@ -484,8 +485,9 @@ void BarnesHut::Workspace::build_part(bh::Tree& part, std::uint32_t begin, std::
 void BarnesHut::Workspace::leaves_in_index_order(const bh::Tree& part,
                                                  std::vector<bh::LeafBody>& bodies) {
   for (const bh::Node& node : part.nodes) {
-    if (node.children != 0 || std::is_sorted(order.begin() + node.begin, order.begin() + node.end))
+    if (node.children != 0 || std::is_sorted(order.data() + node.begin, order.data() + node.end)) {
       continue;
+    }
     bodies.clear();
     for (std::uint32_t r = node.begin; r < node.end; ++r) {
       bodies.push_back(bh::LeafBody{keys[r], sx[r], sy[r], sm[r], order[r]});
