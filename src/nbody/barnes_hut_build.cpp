@@ -7,9 +7,9 @@
 // leaf's bodies in index order; that order depends on the bodies alone, so
 // it is the same for any thread count); the tree, depth first, each node
 // the smallest quadtree cell holding its bodies; mass, centre of mass and
-// second to fourth moments bottom up (parallel axis theorem). A sort range of more
-// than group_size bodies is a subtree, which the thread that sorted it
-// builds at once, from keys and bodies still in its cache; the top of the
+// second to fourth moments bottom up (parallel axis theorem). A sort range
+// of more than group_size bodies is a subtree, which the thread that sorted
+// it builds at once, from keys and bodies still in its cache; the top of the
 // tree is then split serially down to those and to about kSubtrees
 // subtrees for what is left, which threads build on their own; all are
 // appended in a fixed order. The tree is unique, so the same for any number
@@ -66,6 +66,12 @@ int leading_zeros(std::uint64_t x) {  // x != 0 (no <bit>: Emscripten's libc++ 1
   }
   return n;
 #endif
+}
+
+// The quadtree levels that Morton codes share, from the bits in which they
+// differ: kBits where they are all one code.
+int shared_levels(std::uint64_t differ) {
+  return differ == 0 ? kBits : (leading_zeros(differ) - (64 - 2 * kBits)) / 2;
 }
 
 // This thread's share [lo, hi) of n items, the same in every pass.
@@ -224,7 +230,7 @@ void BarnesHut::Workspace::build(std::span<const double> x, std::span<const doub
 #pragma omp single
 #endif
     {  // the float32 masses of subtrees built with their sort range need it
-      max_mass = heaviest(s.nt);
+      max_mass = heaviest_mass(s.nt);
       frame = detail::float_frame(x0 + side * 0.5, y0 + side * 0.5, side * 0.5, max_mass, G);
     }
     mark(2);
@@ -335,7 +341,7 @@ bh::Square BarnesHut::Workspace::combine_bounds(std::size_t nt) const {
 }
 
 // The heaviest mass, from the threads' shares (first_pass).
-double BarnesHut::Workspace::heaviest(std::size_t nt) const {
+double BarnesHut::Workspace::heaviest_mass(std::size_t nt) const {
   double most = partial[4];
   for (std::size_t t = 1; t < nt; ++t) most = std::max(most, partial[5 * t + 4]);
   return most;
@@ -588,9 +594,9 @@ void BarnesHut::Workspace::list_ranges(const bh::SortRange& range, int width,
 // records are then read in that order, from cache, and each key put
 // together again from the range's shared bits and its packed ones. A range
 // of at most leaf_size bodies (or of one key) is one leaf at most, or part
-// of one: its bodies stay in index order. The keys of a range
-// that builds its subtree with its sort stay in the thread's range_keys: of
-// them, only the first and the last are read after (the top of the tree).
+// of one: its bodies stay in index order. The keys of a range that builds
+// its subtree with its sort stay in the thread's range_keys: of them, only
+// the first and the last are read after (the top of the tree).
 void BarnesHut::Workspace::sort_range(const bh::MortonCoder& code, const bh::SortRange& range,
                                       SortScratch& buffers) {
   const std::size_t length = range.end - range.begin;
@@ -647,9 +653,7 @@ void BarnesHut::Workspace::sort_range(const bh::MortonCoder& code, const bh::Sor
 // children are skipped); kBits when they all share one Morton code.
 int BarnesHut::Workspace::level_of(std::uint32_t begin, std::uint32_t end,
                                    const bh::SortedKeys& sorted) {
-  const std::uint64_t first = sorted[begin];
-  const std::uint64_t last = sorted[end - 1];
-  return first == last ? kBits : (leading_zeros(first ^ last) - (64 - 2 * kBits)) / 2;
+  return shared_levels(sorted[begin] ^ sorted[end - 1]);
 }
 
 // The same for a leaf, whose bodies are in index order, not by key
@@ -659,7 +663,7 @@ int BarnesHut::Workspace::leaf_level(std::uint32_t begin, std::uint32_t end,
   const std::uint64_t first = sorted[begin];
   std::uint64_t differ = 0;
   for (std::uint32_t r = begin + 1; r < end; ++r) differ |= sorted[r] ^ first;
-  return differ == 0 ? kBits : (leading_zeros(differ) - (64 - 2 * kBits)) / 2;
+  return shared_levels(differ);
 }
 
 // Where the quadrants of the bodies [begin, end) (common prefix `level`,

@@ -252,10 +252,10 @@ struct alignas(64) Tree {
 
 inline constexpr std::uint32_t kNoRange = ~std::uint32_t{0};
 
-// The sorted Morton codes of the bodies a build step reads, by body rank:
-// the whole sorted array (first = 0), or a thread's copy of one sort range's
-// (first = the range's begin), which stays in its cache while it builds the
-// range's subtree and is never written out.
+// The Morton codes of the bodies a build step reads, in the sort's order
+// (by leaf), by body rank: the whole array (first = 0), or a thread's copy
+// of one sort range's (first = the range's begin), which stays in its cache
+// while it builds the range's subtree and is never written out.
 struct SortedKeys {
   const std::uint64_t* codes;
   std::uint32_t first;
@@ -309,8 +309,8 @@ struct BarnesHut::Workspace {
   BarnesHutStats stats;
 
   // Build.
-  // Morton codes: in the caller's order during the first pass, then sorted
-  // (a range that builds its subtree with its sort keeps its keys in its
+  // Morton codes: in the caller's order during the first pass, then in the
+  // sort's (a range that builds its subtree with its sort keeps its keys in its
   // thread's range_keys: here only its first and last, which the top reads).
   bh::UnsetVector<std::uint64_t> keys;
   bh::UnsetVector<std::uint32_t> order;  // order[r]: the body of Morton rank r
@@ -413,7 +413,7 @@ struct BarnesHut::Workspace {
   void size_buffers(std::size_t n);
   void bound(std::span<const double> x, std::span<const double> y, std::size_t t, std::size_t nt);
   bh::Square combine_bounds(std::size_t nt) const;
-  double heaviest(std::size_t nt) const;
+  double heaviest_mass(std::size_t nt) const;
   void first_pass(std::span<const double> x, std::span<const double> y,
                   std::span<const double> mass, const bh::MortonCoder& code, std::size_t t,
                   std::size_t nt);
