@@ -476,8 +476,14 @@ void BarnesHut::Workspace::build_part(bh::Tree& part, std::uint32_t begin, std::
                                       int depth, const bh::SortedKeys& sorted, SortScratch& buffers,
                                       bool several_ranges) {
   part.reset();
-  part.nodes.reserve(2 * std::size_t{end - begin});
-  part.moments.reserve(2 * std::size_t{end - begin});
+  // Room for twice the nodes of a uniform spread (one for every 15 bodies
+  // with leaves of 32): the arrays grow past that if they must, up to
+  // 2 (end - begin) nodes (every inner node has >= 2 children), which most
+  // trees are far from.
+  const std::size_t bodies = end - begin;
+  const std::size_t expected = std::min(2 * bodies, 4 * bodies / leaf_size + 8);
+  part.nodes.reserve(expected);
+  part.moments.reserve(expected);
   build_node(part, 0, begin, end, depth, false, sorted);
   if (several_ranges) leaves_in_index_order(part, buffers.leaf_bodies);
   finish_part(part, sorted, buffers);
@@ -743,8 +749,6 @@ void BarnesHut::Workspace::plan_tree() {
   std::sort(range_firsts.begin(), range_firsts.end());
   const auto n = static_cast<std::uint32_t>(keys.size());
   tree.reset();
-  tree.nodes.reserve(2 * std::size_t{n});  // every inner node has >= 2 children: < 2n nodes
-  tree.moments.reserve(2 * std::size_t{n});
   pending.clear();
   top.clear();
   const std::size_t cutoff = std::max({std::size_t{n} / bh::kSubtrees, group_size, leaf_size});
@@ -918,7 +922,7 @@ void BarnesHut::Workspace::build_node(bh::Tree& t, std::uint32_t index, std::uin
     node.children = 0;
   } else {
     std::uint32_t bounds[5];
-    split(t, index, begin, end, level, false, sorted, bounds);  // reserved: no reallocation
+    split(t, index, begin, end, level, false, sorted, bounds);
     std::uint32_t c = t.nodes[index].child;
     for (int q = 0; q < 4; ++q) {
       if (bounds[q + 1] > bounds[q])

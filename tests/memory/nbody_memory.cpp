@@ -1,0 +1,131 @@
+// SPDX-License-Identifier: MIT
+// What the Barnes-Hut solver holds between calls, in bytes a body: this
+// program replaces the global operator new and delete (so it is an
+// executable of its own) and counts the bytes the solver allocates.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cstddef>
+#include <cstdint>
+#include <cstdlib>
+#include <new>
+#include <random>
+#include <vector>
+
+#include "calder/nbody.hpp"
+
+namespace {
+
+std::atomic<std::int64_t> live_bytes{0};
+std::atomic<std::int64_t> peak_bytes{0};
+
+// Each block carries its size and its header's length just before it.
+void* counted(std::size_t bytes, std::size_t align) {
+  const std::size_t head = std::max<std::size_t>(align, 64);
+  const std::size_t total = (bytes + 2 * head - 1) / head * head;
+  auto* raw = static_cast<unsigned char*>(std::aligned_alloc(head, total));
+  if (raw == nullptr) throw std::bad_alloc();
+  unsigned char* block = raw + head;
+  auto* sizes = reinterpret_cast<std::size_t*>(block);
+  sizes[-1] = bytes;
+  sizes[-2] = head;
+  const std::int64_t now = live_bytes += static_cast<std::int64_t>(bytes);
+  std::int64_t peak = peak_bytes.load();
+  while (now > peak && !peak_bytes.compare_exchange_weak(peak, now)) {
+  }
+  return block;
+}
+
+void release(void* block) noexcept {
+  if (block == nullptr) return;
+  const auto* sizes = static_cast<const std::size_t*>(block);
+  live_bytes -= static_cast<std::int64_t>(sizes[-1]);
+  std::free(static_cast<unsigned char*>(block) - sizes[-2]);
+}
+
+}  // namespace
+
+void* operator new(std::size_t bytes) { return counted(bytes, 16); }
+void* operator new[](std::size_t bytes) { return counted(bytes, 16); }
+void* operator new(std::size_t bytes, std::align_val_t align) {
+  return counted(bytes, static_cast<std::size_t>(align));
+}
+void* operator new[](std::size_t bytes, std::align_val_t align) {
+  return counted(bytes, static_cast<std::size_t>(align));
+}
+void operator delete(void* block) noexcept { release(block); }
+void operator delete[](void* block) noexcept { release(block); }
+void operator delete(void* block, std::size_t) noexcept { release(block); }
+void operator delete[](void* block, std::size_t) noexcept { release(block); }
+void operator delete(void* block, std::align_val_t) noexcept { release(block); }
+void operator delete[](void* block, std::align_val_t) noexcept { release(block); }
+void operator delete(void* block, std::size_t, std::align_val_t) noexcept { release(block); }
+void operator delete[](void* block, std::size_t, std::align_val_t) noexcept { release(block); }
+
+namespace {
+
+namespace nb = calder::nbody;
+
+struct Disk {
+  std::vector<double> x, y, m;
+};
+
+Disk uniform_disk(std::size_t n) {
+  Disk d{std::vector<double>(n), std::vector<double>(n), std::vector<double>(n, 1.0)};
+  std::mt19937_64 random(3);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  for (std::size_t i = 0; i < n; ++i) {
+    do {
+      d.x[i] = unit(random);
+      d.y[i] = unit(random);
+    } while (d.x[i] * d.x[i] + d.y[i] * d.y[i] > 1.0);
+  }
+  return d;
+}
+
+// Bytes a body that a solver holds after three calls, and at its peak.
+struct Held {
+  double after = 0.0;
+  double peak = 0.0;
+};
+
+Held held_by_solver(const Disk& d, nb::Precision precision, int threads) {
+  const std::size_t n = d.x.size();
+  std::vector<double> ax(n);
+  std::vector<double> ay(n);
+  const std::int64_t before = live_bytes.load();
+  peak_bytes = before;
+  Held held;
+  {
+    nb::BarnesHut solver;
+    nb::BarnesHutOptions options;
+    options.precision = precision;
+    options.threads = threads;
+    options.softening = 1e-3;
+    for (int call = 0; call < 3; ++call) solver.accelerations(d.x, d.y, d.m, ax, ay, options);
+    held.after = static_cast<double>(live_bytes.load() - before) / static_cast<double>(n);
+  }
+  held.peak = static_cast<double>(peak_bytes.load() - before) / static_cast<double>(n);
+  EXPECT_EQ(live_bytes.load(), before) << "the solver gives back all it allocated";
+  return held;
+}
+
+// The solver keeps its buffers (two copies of the bodies as the sort moves
+// them, the bodies in tree order, their sums) and a tree of about one node
+// for every 15 bodies: about 180 bytes a body for 2e5 bodies. Room for
+// nodes reserved by the body (two a body, the most a tree can have) would
+// be about 600 bytes a body more.
+TEST(NbodyMemory, BarnesHutHoldsAFewHundredBytesABody) {
+  const Disk d = uniform_disk(200000);
+  for (const nb::Precision precision : {nb::Precision::float64, nb::Precision::float32}) {
+    for (const int threads : {1, 2, 7}) {
+      const Held held = held_by_solver(d, precision, threads);
+      EXPECT_GT(held.after, 96.0) << "it keeps at least its copies of the bodies";
+      EXPECT_LT(held.after, 320.0) << "threads " << threads;
+      EXPECT_LT(held.peak, 320.0) << "threads " << threads;
+    }
+  }
+}
+
+}  // namespace
