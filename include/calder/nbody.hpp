@@ -187,7 +187,10 @@ struct BarnesHutStats {
 };
 
 // A Barnes-Hut solver that keeps its tree and buffers between calls (the
-// allocation-free way to evaluate accelerations every step).
+// allocation-free way to evaluate accelerations every step: once they have
+// grown to the bodies' size, a call on one thread allocates nothing; on
+// several, a thread's walk lists may still grow when the threads share the
+// walk out differently). It holds about 180 bytes a body.
 //
 // Build: bounding square; Morton codes (2 x 24 bits); a radix sort down to
 // the leaves (leaves in Morton order, a leaf's bodies in index order: one

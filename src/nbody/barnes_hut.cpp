@@ -11,6 +11,7 @@
 #include <memory>
 #include <span>
 #include <string>
+#include <utility>
 
 #include "barnes_hut_tree.hpp"
 #include "calder/error.hpp"
@@ -86,9 +87,18 @@ void BarnesHut::accelerations(std::span<const double> x, std::span<const double>
   if (!workspace_) workspace_ = std::make_unique<Workspace>();
   Workspace& w = *workspace_;
   const std::size_t n = x.size();
-  w.stats = BarnesHutStats{};
+  // Fresh stats whose lists keep their storage: a call like the last one
+  // allocates nothing.
+  BarnesHutStats fresh;
+  fresh.build_phases = std::move(w.stats.build_phases);
+  fresh.build_phases.clear();
+  fresh.work = std::move(w.stats.work);
+  w.stats = std::move(fresh);
   w.stats.bodies = n;
-  if (n < 2) return;
+  if (n < 2) {
+    w.stats.work.clear();
+    return;
+  }
   const int threads = detail::thread_count(options);
 
   const Clock::time_point t0 = Clock::now();
@@ -121,10 +131,13 @@ void BarnesHut::accelerations(std::span<const double> x, std::span<const double>
     w.stats.node_interactions += s.node_interactions;
   }
   const auto team = static_cast<std::size_t>(w.team);
+  w.stats.work.resize(bh::kRegions);
   for (std::size_t r = 0; r < bh::kRegions; ++r) {
     const std::uint64_t* first = w.work.data() + r * team;
-    w.stats.work.push_back(ThreadWork{bh::kRegionNames[r][0], bh::kRegionNames[r][1],
-                                      std::vector<std::uint64_t>(first, first + team)});
+    ThreadWork& region = w.stats.work[r];
+    region.region = bh::kRegionNames[r][0];
+    region.unit = bh::kRegionNames[r][1];
+    region.per_thread.assign(first, first + team);
   }
 }
 

@@ -72,30 +72,31 @@ void validate(const char* where, std::span<const double> x, std::span<const doub
   }
   if (overlaps(ax, ay)) throw Error(std::string(where) + ": ax and ay must not overlap");
 
-  const std::string w(where);
   calder::detail::require_finite(options.G, where, "options.G");
   calder::detail::require_non_negative(options.softening, where, "options.softening");
   if (options.law != Law::plummer) {
     calder::detail::require_positive(options.min_distance, where, "options.min_distance");
     calder::detail::require_positive(options.max_distance, where, "options.max_distance");
     if (options.min_distance > options.max_distance) {
-      throw Error(w + ": options.min_distance must not exceed options.max_distance (got " +
+      throw Error(std::string(where) +
+                  ": options.min_distance must not exceed options.max_distance (got " +
                   calder::detail::format_number(options.min_distance) + " > " +
                   calder::detail::format_number(options.max_distance) + ")");
     }
   }
   if (options.threads < 0) {
-    throw Error(w + ": options.threads must be >= 0 (got " + std::to_string(options.threads) + ")");
+    throw Error(std::string(where) + ": options.threads must be >= 0 (got " +
+                std::to_string(options.threads) + ")");
   }
   for (std::size_t i = 0; i < n; ++i) {
     if (!std::isfinite(x[i]) || !std::isfinite(y[i])) {
-      throw Error(w + ": the position of body " + std::to_string(i) + " must be finite (got " +
-                  calder::detail::format_number(x[i]) + ", " + calder::detail::format_number(y[i]) +
-                  ")");
+      throw Error(std::string(where) + ": the position of body " + std::to_string(i) +
+                  " must be finite (got " + calder::detail::format_number(x[i]) + ", " +
+                  calder::detail::format_number(y[i]) + ")");
     }
     if (!(std::isfinite(mass[i]) && mass[i] > 0.0)) {
-      throw Error(w + ": the mass of body " + std::to_string(i) + " must be finite and > 0 (got " +
-                  calder::detail::format_number(mass[i]) + ")");
+      throw Error(std::string(where) + ": the mass of body " + std::to_string(i) +
+                  " must be finite and > 0 (got " + calder::detail::format_number(mass[i]) + ")");
     }
   }
 }

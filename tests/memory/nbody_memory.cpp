@@ -19,6 +19,7 @@ namespace {
 
 std::atomic<std::int64_t> live_bytes{0};
 std::atomic<std::int64_t> peak_bytes{0};
+std::atomic<std::int64_t> allocations{0};
 
 // Each block carries its size and its header's length just before it.
 void* counted(std::size_t bytes, std::size_t align) {
@@ -26,6 +27,7 @@ void* counted(std::size_t bytes, std::size_t align) {
   const std::size_t total = (bytes + 2 * head - 1) / head * head;
   auto* raw = static_cast<unsigned char*>(std::aligned_alloc(head, total));
   if (raw == nullptr) throw std::bad_alloc();
+  ++allocations;
   unsigned char* block = raw + head;
   auto* sizes = reinterpret_cast<std::size_t*>(block);
   sizes[-1] = bytes;
@@ -125,6 +127,35 @@ TEST(NbodyMemory, BarnesHutHoldsAFewHundredBytesABody) {
       EXPECT_LT(held.after, 320.0) << "threads " << threads;
       EXPECT_LT(held.peak, 320.0) << "threads " << threads;
     }
+  }
+}
+
+// Once its buffers have grown, a call allocates nothing: not its checks
+// (their messages are built only to be thrown), not its stats (their lists
+// keep their storage), not its tree.
+TEST(NbodyMemory, BarnesHutCallsAllocateNothingOnceGrown) {
+  const Disk d = uniform_disk(20000);
+  std::vector<double> ax(d.x.size());
+  std::vector<double> ay(d.x.size());
+  for (const nb::Precision precision : {nb::Precision::float64, nb::Precision::float32}) {
+    nb::BarnesHut solver;
+    nb::BarnesHutOptions options;
+    options.precision = precision;
+    options.threads = 1;
+    options.softening = 1e-3;
+    solver.accelerations(d.x, d.y, d.m, ax, ay, options);
+    const nb::BarnesHutStats first = solver.stats();
+    for (int call = 0; call < 2; ++call) solver.accelerations(d.x, d.y, d.m, ax, ay, options);
+    const std::int64_t before = allocations.load();
+    for (int call = 0; call < 4; ++call) solver.accelerations(d.x, d.y, d.m, ax, ay, options);
+    EXPECT_EQ(allocations.load() - before, 0);
+    // The stats are the last call's, as the first call's were: reused, not added to.
+    const nb::BarnesHutStats& last = solver.stats();
+    EXPECT_EQ(last.build_phases.size(), first.build_phases.size());
+    ASSERT_EQ(last.work.size(), first.work.size());
+    ASSERT_FALSE(last.work.empty());
+    EXPECT_EQ(last.work.front().per_thread, std::vector<std::uint64_t>{d.x.size()});
+    EXPECT_EQ(last.interactions, first.interactions);
   }
 }
 
