@@ -10,10 +10,10 @@
 #include <cstdint>
 #include <cstdlib>
 #include <new>
-#include <random>
 #include <vector>
 
 #include "calder/nbody.hpp"
+#include "support/nbody_systems.hpp"
 
 namespace {
 
@@ -69,30 +69,13 @@ namespace {
 
 namespace nb = calder::nbody;
 
-struct Disk {
-  std::vector<double> x, y, m;
-};
-
-Disk uniform_disk(std::size_t n) {
-  Disk d{std::vector<double>(n), std::vector<double>(n), std::vector<double>(n, 1.0)};
-  std::mt19937_64 random(3);
-  std::uniform_real_distribution<double> unit(-1.0, 1.0);
-  for (std::size_t i = 0; i < n; ++i) {
-    do {
-      d.x[i] = unit(random);
-      d.y[i] = unit(random);
-    } while (d.x[i] * d.x[i] + d.y[i] * d.y[i] > 1.0);
-  }
-  return d;
-}
-
 // Bytes a body that a solver holds after three calls, and at its peak.
 struct Held {
   double after = 0.0;
   double peak = 0.0;
 };
 
-Held held_by_solver(const Disk& d, nb::Precision precision, int threads) {
+Held held_by_solver(const calder::test::System& d, nb::Precision precision, int threads) {
   const std::size_t n = d.x.size();
   std::vector<double> ax(n);
   std::vector<double> ay(n);
@@ -119,7 +102,7 @@ Held held_by_solver(const Disk& d, nb::Precision precision, int threads) {
 // nodes reserved by the body (two a body, the most a tree can have) would
 // be about 600 bytes a body more.
 TEST(NbodyMemory, BarnesHutHoldsAFewHundredBytesABody) {
-  const Disk d = uniform_disk(200000);
+  const calder::test::System d = calder::test::disk(200000, 3);
   for (const nb::Precision precision : {nb::Precision::float64, nb::Precision::float32}) {
     for (const int threads : {1, 2, 7}) {
       const Held held = held_by_solver(d, precision, threads);
@@ -134,7 +117,7 @@ TEST(NbodyMemory, BarnesHutHoldsAFewHundredBytesABody) {
 // (their messages are built only to be thrown), not its stats (their lists
 // keep their storage), not its tree.
 TEST(NbodyMemory, BarnesHutCallsAllocateNothingOnceGrown) {
-  const Disk d = uniform_disk(20000);
+  const calder::test::System d = calder::test::disk(20000, 3);
   std::vector<double> ax(d.x.size());
   std::vector<double> ay(d.x.size());
   for (const nb::Precision precision : {nb::Precision::float64, nb::Precision::float32}) {
