@@ -15,7 +15,9 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <memory>
+#include <new>
 #include <span>
 #include <utility>
 #include <vector>
@@ -131,10 +133,16 @@ void assign_greedy(const std::vector<std::uint64_t>& sizes, std::size_t nt, std:
                    std::vector<std::uint32_t>& mine, std::vector<std::uint32_t>& by_size,
                    std::vector<std::uint64_t>& load);
 
+// Memory for UnsetAllocator (buffers.cpp): a large block on transparent
+// huge pages where the system has them.
+void* allocate_buffer(std::size_t bytes, std::size_t align);
+void free_buffer(void* block, std::size_t bytes, std::size_t align) noexcept;
+
 // An allocator whose resize leaves new numbers unset: for arrays that a
 // step writes in full, every call, in parallel (zeroing them first would be
 // a serial pass over memory that each thread then writes again, and would
-// put every page on the memory node of the thread that zeroed it).
+// put every page on the memory node of the thread that zeroed it). Large
+// arrays go on huge pages (allocate_buffer).
 template <typename T>
 struct UnsetAllocator : std::allocator<T> {
   template <typename U>
@@ -144,6 +152,14 @@ struct UnsetAllocator : std::allocator<T> {
   UnsetAllocator() = default;
   template <typename U>
   explicit UnsetAllocator(const UnsetAllocator<U>&) noexcept {}
+  T* allocate(std::size_t count) {
+    if (count > std::numeric_limits<std::size_t>::max() / sizeof(T))
+      throw std::bad_array_new_length();
+    return static_cast<T*>(allocate_buffer(count * sizeof(T), alignof(T)));
+  }
+  void deallocate(T* p, std::size_t count) noexcept {
+    free_buffer(p, count * sizeof(T), alignof(T));
+  }
   template <typename U>
   void construct(U* p) noexcept {
     ::new (static_cast<void*>(p)) U;
