@@ -22,8 +22,12 @@ namespace {
 
 #if defined(__linux__) && defined(MADV_HUGEPAGE)
 constexpr std::size_t kHugePage = std::size_t{1} << 21;
+void ask_for_huge_pages(void* block, std::size_t bytes) {
+  madvise(block, bytes, MADV_HUGEPAGE);  // a hint; refused is fine
+}
 #else
 constexpr std::size_t kHugePage = 0;  // none: every block as usual
+void ask_for_huge_pages(void*, std::size_t) {}
 #endif
 
 bool huge(std::size_t bytes) { return kHugePage != 0 && bytes >= kHugePage; }
@@ -36,9 +40,7 @@ std::align_val_t alignment(std::size_t bytes, std::size_t align) {
 
 void* allocate_buffer(std::size_t bytes, std::size_t align) {
   void* block = ::operator new(bytes, alignment(bytes, align));
-#if defined(__linux__) && defined(MADV_HUGEPAGE)
-  if (huge(bytes)) madvise(block, bytes, MADV_HUGEPAGE);  // a hint; refused is fine
-#endif
+  if (huge(bytes)) ask_for_huge_pages(block, bytes);
   return block;
 }
 

@@ -182,8 +182,7 @@ std::int64_t anon_huge_bytes() {
 // The solver's large arrays (the bodies as the sort moves them, in tree
 // order, the nodes' moments) start on 2 MiB boundaries and ask the kernel
 // for huge pages: where the system allows them (THP "madvise" or "always"),
-// they get some. Fewer address translations for the build's scattered
-// writes and the walk's reads of the tree.
+// they get some: fewer pages for the build's passes to translate.
 TEST(NbodyMemory, BarnesHutLargeArraysGoOnHugePages) {
   const calder::test::System d = calder::test::disk(300000, 5);
   std::vector<double> ax(d.x.size());
