@@ -1,11 +1,11 @@
 // SPDX-License-Identifier: MIT
-// The p5.js reference trajectories of shared/reference/, reproduced through
+// The p5.js reference trajectories of tests/reference/, reproduced through
 // the field path: a World holding fields and a boundary, advanced by
 // world.step() alone, with no per-body code. (examples/*.cpp reproduce the
 // same references book-style with Mover; a separate ctest compares those.)
 //
 // Every value of every frame must match within 1e-9: absolute, or relative
-// to the reference value where its magnitude is above 1 (shared/reference/
+// to the reference value where its magnitude is above 1 (tests/reference/
 // README.md).
 #include <gtest/gtest.h>
 
@@ -23,9 +23,8 @@
 #include "calder/forces.hpp"
 #include "calder/world.hpp"
 
-#ifndef CALDER_SHARED_DIR
-#error \
-    "CALDER_SHARED_DIR must name the shared folder (CMake defines it; by hand: -DCALDER_SHARED_DIR=\"/work/shared\")"
+#ifndef CALDER_REFERENCE_DIR
+#error "CALDER_REFERENCE_DIR must name tests/reference (CMake defines it)"
 #endif
 
 namespace {
@@ -44,7 +43,7 @@ struct Row {
 };
 
 std::string reference_path(const std::string& name, const char* file) {
-  return std::string(CALDER_SHARED_DIR) + "/reference/" + name + "/" + file;
+  return std::string(CALDER_REFERENCE_DIR) + "/" + name + "/" + file;
 }
 
 std::string read_text(const std::string& path) {

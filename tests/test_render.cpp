@@ -208,7 +208,7 @@ TEST(RenderLook, LiquidIsALightGrayRectangleAndTheFigureDrawsItsSurface) {
   EXPECT_EQ(pixel(canvas, 10, 119).r, 255);
 
   // The printed figure of example 2.5: a 2 px black line at the surface and
-  // no fill (measured on shared/reference/screenshots: rows 238-241 of 480).
+  // no fill (measured on the book's printed figure: rows 238-241 of 480).
   const RenderStyle figure =
       calder::book_style(calder::builtin_scene("example-2.5"), calder::BookLook::figure);
   canvas.clear();

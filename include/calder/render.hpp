@@ -137,7 +137,7 @@ enum class BookLook {
   // galaxy (exercise 2.16), which fades with background(255, 50) (and whose
   // forces, should they be shown, are drawn at force_scale 2, velocity_scale 2).
   sketch,
-  // The book's printed figures (shared/reference/screenshots): trails that
+  // The book's printed figures (chapter 2's printed figures): trails that
   // fade with background(255, 10) (2.4, 2.7 and the other examples) or
   // background(255, 20) (2.5, whose liquid is drawn as a line, unfilled);
   // the galaxy as in its sketch.

@@ -2,8 +2,9 @@
 """Shared fixtures: the `calder` command and the p5.js references.
 
 The ctest that runs these tests (python/CMakeLists.txt) sets CALDER_EXE to
-the calder command it built and CALDER_SHARED_DIR to the folder holding
-reference/; run by hand, set them the same way.
+the calder command it built and CALDER_REFERENCE_DIR to the p5.js
+references (tests/reference in the repository, the default); run by hand,
+set CALDER_EXE the same way.
 """
 
 import os
@@ -25,8 +26,7 @@ def calder_exe() -> str:
 
 @pytest.fixture(scope="session")
 def reference_dir() -> pathlib.Path:
-    shared = pathlib.Path(os.environ.get("CALDER_SHARED_DIR", REPOSITORY.parent / "shared"))
-    folder = shared / "reference"
+    folder = pathlib.Path(os.environ.get("CALDER_REFERENCE_DIR", REPOSITORY / "tests" / "reference"))
     if not folder.is_dir():
-        pytest.fail(f"no p5.js references in {folder} (set CALDER_SHARED_DIR)")
+        pytest.fail(f"no p5.js references in {folder} (set CALDER_REFERENCE_DIR)")
     return folder
