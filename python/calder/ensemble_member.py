@@ -220,14 +220,14 @@ def run_member(plan: Plan, member: Member) -> MemberResult:
                 simulation = None
             writer = ArchiveWriter(archive_path(plan.checkpoint, member.index, attempt))
         wanted = set(record_frames(member.frames, plan.every))
-        saved = set(snapshot_frames(member.frames, plan)) if writer else set()
+        saved = set(snapshot_frames(member.frames, plan)) if writer is not None else set()
         if simulation is None:
             simulation = Simulation(scene)
             records.rows.clear()
             simulation.world.threads = plan.threads
             if 0 in wanted:
                 records.add(0, simulation.world)
-            if writer:
+            if writer is not None:
                 writer.append(simulation)
         simulation.world.threads = plan.threads
         for stop in sorted(f for f in wanted | saved if f > simulation.frame):
@@ -236,7 +236,7 @@ def run_member(plan: Plan, member: Member) -> MemberResult:
                 records.add(stop, simulation.world)
             if stop in saved:
                 writer.append(simulation)
-        if writer:
+        if writer is not None:
             writer.close()
         return MemberResult(member.index, status, records.columns(), resumed_from, "",
                             time.perf_counter() - start, worker)
