@@ -153,6 +153,9 @@ def _number(value: Any, name: str) -> Any:
                 f"(got {type(value).__name__})")
 
 
+_ARCHIVE_HEADER_BYTES = 16  # docs/SNAPSHOTS.md, "Archives"
+
+
 def archive_path(folder: str, index: int, attempt: int) -> str:
     return os.path.join(folder, f"member-{index:06d}.{attempt}.archive")
 
@@ -173,6 +176,8 @@ def _resume(plan: Plan, member: Member, scene: Scene, records: _Records
     attempts = _attempts(plan.checkpoint, member.index)
     snapshots: Dict[int, Tuple[Archive, int]] = {}
     for _, path in attempts:
+        if os.path.getsize(path) < _ARCHIVE_HEADER_BYTES:
+            continue  # an attempt killed before its archive's header was written
         archive = Archive(path)
         for i, frame in enumerate(archive.frames):
             snapshots.setdefault(frame, (archive, i))

@@ -190,10 +190,15 @@ def test_a_killed_ensemble_started_again_runs_only_the_unfinished_members(tmp_pa
     finished = []
     deadline = time.monotonic() + 120
     while time.monotonic() < deadline and child.poll() is None:
-        archives = sorted(folder.glob("member-*.archive")) if folder.is_dir() else []
-        done = [a for a in archives if calder.Archive(str(a)).complete]
-        running = [a for a in archives if not calder.Archive(str(a)).complete]
-        if len(done) >= 2 and running and max(calder.Archive(str(running[0])).frames, default=0) >= 20:
+        archives = []
+        for path in sorted(folder.glob("member-*.archive")) if folder.is_dir() else []:
+            try:
+                archives.append((path, calder.Archive(str(path))))
+            except calder.Error:  # just created, its header not yet written
+                pass
+        done = [path for path, archive in archives if archive.complete]
+        running = [archive for _, archive in archives if not archive.complete]
+        if len(done) >= 2 and running and max(running[0].frames, default=0) >= 20:
             os.kill(child.pid, signal.SIGKILL)
             finished = done
             break
