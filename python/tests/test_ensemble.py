@@ -231,3 +231,61 @@ def test_a_checkpoint_of_another_ensemble_is_refused(tmp_path):
         warnings.simplefilter("always")
         assert other.run(workers=1).empty
     assert "holds another scene than member 0" in str(caught[0].message)
+
+
+# --- calder sweep ------------------------------------------------------------------
+
+
+def test_calder_sweep_gives_the_ensembles_numbers(calder_exe, tmp_path):
+    vary = {"fields[0].law.G": [0.5, 1 / 3], "world.integrator": ["semi_implicit_euler", "rk4"]}
+    ensemble = calder.Ensemble(SCENE, seeds=[0, 7], vary=vary, frames=12, every=6)
+    expected = ensemble.run(workers=1)
+    output = tmp_path / "sweep.csv"
+    subprocess.run([calder_exe, "sweep", SCENE, "--seeds", "0,7", "--frames", "12", "--every", "6",
+                    "--set", "fields[0].law.G=0.5,0.3333333333333333",
+                    "--set", "world.integrator=semi_implicit_euler,rk4",
+                    "--output", str(output), "--jobs", "2"], check=True, capture_output=True)
+    table = pandas.read_csv(output, dtype={"state_hash": np.uint64}, float_precision="round_trip")
+    expect_bits(table, expected)
+    # Body columns, one row per body, as the ensemble's.
+    bodies = calder.Ensemble("example-2.7", seeds=[3], frames=5, record=["bodies"]).run(workers=1)
+    subprocess.run([calder_exe, "sweep", "example-2.7", "--seeds", "3", "--frames", "5",
+                    "--record", "bodies", "--output", str(output)], check=True)
+    expect_bits(pandas.read_csv(output, float_precision="round_trip"), bodies)
+
+
+@pytest.mark.parametrize("arguments, words", [
+    (["--set", "fields[0].law.g=1"], "calder: --set fields[0].law.g=1: unknown key 'g' in 'law' "
+                                     "(did you mean 'G'?)"),
+    (["--set", "world.dt=1,-1"], "calder: --set world.dt=-1: 'world.dt' must be > 0, got -1"),
+    (["--set", "fields[4].law.G=1"], "the scene has 1 'fields' (indices 0 to 0)"),
+    (["--set", "world.dt"], "--set: expected KEY=V1,V2,..."),
+    (["--seeds", "9-2"], "--seeds: the range '9-2' ends before it starts"),
+    (["--record", "stat_hash"], "(did you mean 'state_hash'?)"),
+    (["--every", "0"], "--every: expected an integer >= 1"),
+])
+def test_calder_sweep_refuses_bad_input_with_one_line_and_exit_2(calder_exe, tmp_path, arguments,
+                                                                  words):
+    output = tmp_path / "never.csv"
+    run = subprocess.run([calder_exe, "sweep", SCENE, "--frames", "2", *arguments,
+                          "--output", str(output)], capture_output=True, text=True)
+    assert run.returncode == 2
+    assert words in run.stderr and run.stderr.count("\n") == 1, run.stderr
+    assert not output.exists()
+
+
+def test_calder_sweep_parquet_is_refused_and_a_failing_member_reported(calder_exe, tmp_path):
+    run = subprocess.run([calder_exe, "sweep", SCENE, "--output", str(tmp_path / "t.parquet")],
+                         capture_output=True, text=True)
+    assert run.returncode == 2 and "writes no parquet" in run.stderr
+    output = tmp_path / "t.csv"
+    run = subprocess.run([calder_exe, "sweep", SCENE, "--frames", "3",
+                          "--set", "world.dt=1,1e200,0.5", "--output", str(output)],
+                         capture_output=True, text=True)
+    assert run.returncode == 1
+    lines = run.stderr.splitlines()
+    assert lines[0].startswith("calder: sweep: member 1 (world.dt=1e200, seed 0) failed: frame 1: "
+                               "World::step: body 0 has a non-finite position")
+    assert lines[1] == (f"calder: sweep: 1 of 3 members failed (each reported above); the others "
+                        f"are in {output}")
+    assert pandas.read_csv(output).member.tolist() == [0, 2]
