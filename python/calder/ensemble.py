@@ -336,21 +336,14 @@ class Ensemble:
         pandas = _pandas()
         if as_xarray:
             _xarray()
-        pieces = []
-        for result in self.results(client, workers, batch_size, progress):
-            if result.status != "failed":
-                pieces.append(self._frame(pandas, result))
+        done = [r for r in self.results(client, workers, batch_size, progress)
+                if r.status != "failed"]
         failed = [r for r in self.status if r.status == "failed"]
         if failed and errors == "raise":
             raise Error(f"Ensemble: {len(failed)} of {len(self.members)} members failed; first: "
                         f"member {failed[0].index} ({_described(self.members[failed[0].index])})"
                         f": {failed[0].error}")
-        if pieces:
-            table = pandas.concat(pieces, ignore_index=True)
-        else:
-            table = self._frame(pandas, None)
-        keys = ["member", "frame"] + (["body"] if self.plan.bodies else [])
-        table = table.sort_values(keys, kind="stable", ignore_index=True)
+        table = self._table(pandas, sorted(done, key=lambda r: r.index))
         return self._to_xarray(table) if as_xarray else table
 
     def table(self):
@@ -366,16 +359,25 @@ class Ensemble:
                          "worker": result.worker})
         return pandas.DataFrame(rows)
 
-    def _frame(self, pandas, result: Optional[MemberResult]):
-        data = dict(result.data) if result is not None else {"frame": []}
-        count = len(data["frame"])
-        member = self.members[result.index] if result is not None else None
-        head: Dict[str, Any] = {
-            "member": pandas.Series([member.index if member else 0] * count, dtype="int64"),
-            "seed": pandas.Series([member.seed if member else 0] * count, dtype="int64")}
+    def _table(self, pandas, results: List[MemberResult]):
+        """One DataFrame of the members' columns (in member order; within a
+        member its rows are already by frame and body)."""
+        import numpy as np
+        counts = [len(r.data["frame"]) for r in results]
+        members = [self.members[r.index] for r in results]
+        columns: Dict[str, Any] = {
+            "member": np.repeat(np.array([m.index for m in members], np.int64), counts),
+            "seed": np.repeat(np.array([m.seed for m in members], np.int64), counts)}
         for name in self.parameter_names:
-            head[name] = [member.parameters.get(name) if member else None] * count
-        return pandas.DataFrame({**head, **data})
+            values = [m.parameters.get(name) for m in members]
+            repeated = np.empty(len(values), dtype=object)
+            repeated[:] = values
+            columns[name] = pandas.Series(np.repeat(repeated, counts).tolist())
+        names = list(results[0].data) if results else ["frame"]
+        for name in names:
+            parts = [r.data[name] for r in results]
+            columns[name] = np.concatenate(parts) if parts else np.zeros(0, np.int64)
+        return pandas.DataFrame(columns)
 
     def _to_xarray(self, table):
         xarray = _xarray()

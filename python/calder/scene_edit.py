@@ -186,6 +186,10 @@ class SceneEdit:
         _value(value)  # refuses what a scene file can't hold, by type
         node[last] = value
 
+    def set(self, path: str, value: Any) -> None:
+        """edit.set(path, value): edit[path] = value, as an expression."""
+        self[path] = value
+
     def __getitem__(self, path: str) -> Any:
         node, last = self._walk(path, create=False)
         if isinstance(last, str) and last not in node:

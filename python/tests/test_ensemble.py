@@ -81,7 +81,8 @@ def test_pool_and_serial_equal_the_plain_loop_bit_for_bit():
     expect_bits(ensemble.run(workers=1), expected)
     expect_bits(ensemble.run(workers=2, batch_size=1), expected)
     assert {r.status for r in ensemble.status} == {"ran"}
-    assert len({r.worker for r in ensemble.status}) == 2  # two processes did the work
+    # Other processes did the work (how the pool spread it is its own affair).
+    assert all(not r.worker.endswith(f":{os.getpid()}") for r in ensemble.status)
 
 
 def test_a_list_of_combinations_an_edit_function_and_body_columns():
