@@ -463,23 +463,27 @@ def _pool_results(plan: Plan, members: Sequence[Member], workers: int,
     plan_bytes = _serialized(plan)
     method = "forkserver" if "forkserver" in multiprocessing.get_all_start_methods() else "spawn"
     pending = {m.index: m for m in members}
-    for attempt in range(4):
+    for _ in range(4):
         context = multiprocessing.get_context(method)
         with concurrent.futures.ProcessPoolExecutor(
                 max_workers=workers, mp_context=context, initializer=pool_initializer,
                 initargs=(plan_bytes,)) as pool:
             futures = [pool.submit(pool_run_batch, batch)
                        for batch in _batches(list(pending.values()), workers, batch_size)]
-            try:
-                for future in concurrent.futures.as_completed(futures):
-                    for result in future.result():
-                        del pending[result.index]
-                        yield result
+            broken = False
+            for future in concurrent.futures.as_completed(futures):
+                try:
+                    results = future.result()
+                except BrokenProcessPool:  # a worker died: its batch, and those queued, again
+                    broken = True
+                    continue
+                for result in results:
+                    del pending[result.index]
+                    yield result
+            if not broken:
                 return
-            except BrokenProcessPool:
-                if attempt == 3:
-                    raise Error(f"Ensemble: the local pool's workers died 4 times; "
-                                f"{len(pending)} members did not finish") from None
+    raise Error(f"Ensemble: the local pool's workers died 4 times; {len(pending)} members "
+                "did not finish")
 
 
 def _dask_results(client: Any, plan: Plan, members: Sequence[Member],

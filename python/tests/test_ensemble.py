@@ -9,11 +9,13 @@ import signal
 import subprocess
 import sys
 import textwrap
+import threading
 import time
 import warnings
 
 import numpy as np
 import pandas
+import psutil
 import pytest
 
 import calder
@@ -223,6 +225,45 @@ def test_a_killed_ensemble_started_again_runs_only_the_unfinished_members(tmp_pa
     again = calder.Ensemble(SCENE, **spec)
     expect_bits(again.run(workers=2), uninterrupted)
     assert set(again.table().status) == {"finished before"}
+
+
+def test_a_pool_worker_killed_mid_member_is_replaced_and_the_member_resumed(tmp_path):
+    spec = dict(seeds=4, frames=300, every=100, checkpoint=str(tmp_path), checkpoint_every=10)
+    ensemble = calder.Ensemble(SCENE, **spec)
+    killed = []
+
+    def kill_the_worker_writing_a_member():
+        # The pool's worker that has an archive open, past frame 20 and not
+        # near its end, is killed (SIGKILL), by its pid.
+        deadline = time.monotonic() + 120
+        while time.monotonic() < deadline and not killed:
+            for path in tmp_path.glob("member-*.archive"):
+                try:
+                    archive = calder.Archive(str(path))
+                except calder.Error:
+                    continue
+                if archive.complete or not 20 <= max(archive.frames, default=0) <= 200:
+                    continue
+                for process in psutil.process_iter(["pid"]):
+                    try:
+                        if any(f.path == str(path) for f in process.open_files()):
+                            os.kill(process.pid, signal.SIGKILL)
+                            killed.append(process.pid)
+                            return
+                    except (psutil.NoSuchProcess, psutil.AccessDenied):
+                        pass
+            time.sleep(0.005)
+
+    killer = threading.Thread(target=kill_the_worker_writing_a_member)
+    killer.start()
+    table = ensemble.run(workers=2, batch_size=1)
+    killer.join()
+    assert killed, "no member was caught in the middle"
+    status = ensemble.table()
+    assert "failed" not in set(status.status) and len(status) == 4
+    assert (status.status == "resumed").sum() >= 1
+    assert (status[status.status == "resumed"].resumed_from >= 20).all()
+    expect_bits(table, calder.Ensemble(SCENE, **{**spec, "checkpoint": None}).run(workers=1))
 
 
 def test_a_checkpoint_of_another_ensemble_is_refused(tmp_path):
