@@ -466,31 +466,30 @@ CLI::App* add_sweep_command(CLI::App& app, SweepOptions& options) {
   return sweep;
 }
 
-void sweep_command(const SweepOptions& options, std::ostream& out, std::ostream& err) {
-  if (ends_with_lower(options.output, ".parquet")) {
-    throw InputError("--output " + printable(options.output) +
+namespace {
+
+// The flags, checked: everything but the scene.
+struct SweepPlan {
+  Records records;
+  std::int64_t frames = -1;  // < 0: the scene's
+  std::optional<std::int64_t> every;
+  std::size_t jobs = 1;
+  std::vector<Parameter> parameters;
+  std::vector<std::uint32_t> seeds;
+};
+
+void check_output_name(const std::string& output) {
+  if (ends_with_lower(output, ".parquet")) {
+    throw InputError("--output " + printable(output) +
                      ": this calder writes no parquet (Debian 12 packages no parquet writer: "
                      "no pyarrow, no Arrow for C++); write .csv");
   }
-  if (options.output != "-" && !ends_with_lower(options.output, ".csv")) {
-    throw InputError("--output " + printable(options.output) + ": expected a FILE.csv or '-'");
+  if (output != "-" && !ends_with_lower(output, ".csv")) {
+    throw InputError("--output " + printable(output) + ": expected a FILE.csv or '-'");
   }
-  const Records records = parse_records(options.record);
-  const std::int64_t frames = options.frames ? parse_frames("--frames", *options.frames) : -1;
-  std::optional<std::int64_t> every;
-  if (options.every) {
-    every = parse_frames("--every", *options.every);
-    if (*every < 1) throw InputError("--every: expected an integer >= 1, got '0'");
-  }
-  std::size_t jobs = std::max(1U, std::thread::hardware_concurrency());
-  if (options.jobs) {
-    const auto n = to_int64(*options.jobs);
-    if (!n || *n < 1 || *n > 4096) {
-      throw InputError("--jobs: expected an integer from 1 to 4096, got '" +
-                       printable(*options.jobs) + "'");
-    }
-    jobs = static_cast<std::size_t>(*n);
-  }
+}
+
+std::vector<Parameter> parse_parameters(const SweepOptions& options) {
   std::vector<Parameter> parameters;
   for (const std::string& text : options.set) {
     Parameter parameter = parse_set(text);
@@ -504,57 +503,71 @@ void sweep_command(const SweepOptions& options, std::ostream& out, std::ostream&
     }
     parameters.push_back(std::move(parameter));
   }
-  const std::vector<std::uint32_t> seeds =
-      options.seeds ? parse_seeds(*options.seeds) : std::vector<std::uint32_t>{0};
+  return parameters;
+}
 
-  const Scene base = load_scene_argument(options.scene);
+SweepPlan parse_plan(const SweepOptions& options) {
+  check_output_name(options.output);
+  SweepPlan plan;
+  plan.records = parse_records(options.record);
+  if (options.frames) plan.frames = parse_frames("--frames", *options.frames);
+  if (options.every) {
+    plan.every = parse_frames("--every", *options.every);
+    if (*plan.every < 1) throw InputError("--every: expected an integer >= 1, got '0'");
+  }
+  plan.jobs = std::max(1U, std::thread::hardware_concurrency());
+  if (options.jobs) {
+    const auto n = to_int64(*options.jobs);
+    if (!n || *n < 1 || *n > 4096) {
+      throw InputError("--jobs: expected an integer from 1 to 4096, got '" +
+                       printable(*options.jobs) + "'");
+    }
+    plan.jobs = static_cast<std::size_t>(*n);
+  }
+  plan.parameters = parse_parameters(options);
+  plan.seeds = options.seeds ? parse_seeds(*options.seeds) : std::vector<std::uint32_t>{0};
+  return plan;
+}
+
+std::vector<Member> sweep_members(const SweepOptions& options, const SweepPlan& plan,
+                                  const Scene& base) {
 #ifdef CALDER_APP_HAS_SCENE_FILE
-  const std::vector<Member> members =
-      make_members(base, parameters, seeds, options.seeds.has_value(), frames);
+  return make_members(base, plan.parameters, plan.seeds, options.seeds.has_value(), plan.frames);
 #else
-  if (!parameters.empty()) {
+  if (!plan.parameters.empty()) {
     throw InputError("--set: this calder was built without scene files (calder::scene_file)");
   }
   std::vector<Member> members;
-  for (const std::uint32_t seed : seeds) {
+  for (const std::uint32_t seed : plan.seeds) {
     Member member{members.size(), seed, {}, base};
     if (options.seeds) member.scene.world.seed = seed;
     member.seed = member.scene.world.seed;
-    if (frames >= 0) member.scene.frames = frames;
+    if (plan.frames >= 0) member.scene.frames = plan.frames;
     members.push_back(std::move(member));
   }
+  return members;
 #endif
+}
 
-  std::vector<NamedPath> inputs;
-  struct stat info {};
-  if (::stat(options.scene.c_str(), &info) == 0)
-    inputs.push_back({"the scene file", options.scene});
-  check_outputs(inputs, {{"--output", options.output}}, std::nullopt);
-  OutputFile file(options.output);
-  std::ostream& stream = file.is_stdout() ? out : file.stream();
-
-  std::string header = "member,seed";
-  for (const Parameter& p : parameters) header += "," + csv_field(p.path);
-  header += records.bodies.empty() ? ",frame" : ",frame,body";
-  for (const std::string& name : records.scalars) header += "," + name;
-  for (const std::string& name : records.bodies) header += "," + name;
-
-  // Threads take the next member; the rows wait in member order.
+// Runs the members on plan.jobs threads, each taking the next member; the
+// outcomes come back in member order. A terminating signal stops them all
+// at their next frame (Interrupted, exit 128 + signal).
+std::vector<Outcome> run_members(const std::vector<Member>& members, const SweepPlan& plan,
+                                 const std::string& label, std::ostream& err) {
   std::vector<Outcome> outcomes(members.size());
   std::atomic<std::size_t> next{0};
   std::atomic<std::size_t> done{0};
   std::atomic<bool> stop{false};
   const auto work = [&] {
     for (std::size_t i = next++; i < members.size() && !stop; i = next++) {
-      outcomes[i] = run_member(members[i], records, every, stop);
+      outcomes[i] = run_member(members[i], plan.records, plan.every, stop);
       ++done;
     }
   };
   const InterruptGuard interrupt;
-  Progress progress(err, "sweep " + printable(base.name), static_cast<std::int64_t>(members.size()),
-                    stderr_is_terminal());
+  Progress progress(err, label, static_cast<std::int64_t>(members.size()), stderr_is_terminal());
   std::vector<std::thread> threads;
-  for (std::size_t t = 0; t < std::min(jobs, members.size()); ++t) threads.emplace_back(work);
+  for (std::size_t t = 0; t < std::min(plan.jobs, members.size()); ++t) threads.emplace_back(work);
   try {
     while (done.load() < members.size()) {
       interrupt.check();
@@ -568,23 +581,61 @@ void sweep_command(const SweepOptions& options, std::ostream& out, std::ostream&
   }
   for (std::thread& t : threads) t.join();
   progress.finish();
+  return outcomes;
+}
 
-  stream << header << '\n';
+std::string table_header(const SweepPlan& plan) {
+  std::string header = "member,seed";
+  for (const Parameter& p : plan.parameters) header += "," + csv_field(p.path);
+  header += plan.records.bodies.empty() ? ",frame" : ",frame,body";
+  for (const std::string& name : plan.records.scalars) header += "," + name;
+  for (const std::string& name : plan.records.bodies) header += "," + name;
+  return header;
+}
+
+// Writes the rows of the members that ran, reports each that failed on
+// `err`; returns how many failed.
+std::size_t write_table(std::ostream& stream, OutputFile& file, const SweepPlan& plan,
+                        const std::vector<Member>& members, const std::vector<Outcome>& outcomes,
+                        std::ostream& err) {
+  stream << table_header(plan) << '\n';
   std::size_t failed = 0;
   for (std::size_t i = 0; i < members.size(); ++i) {
-    if (!outcomes[i].error.empty()) {
-      ++failed;
-      std::string described;
-      for (std::size_t k = 0; k < parameters.size(); ++k) {
-        described += parameters[k].path + "=" + members[i].values[k] + ", ";
-      }
-      err << "calder: sweep: member " << i << " (" << described << "seed " << members[i].seed
-          << ") failed: " << outcomes[i].error << '\n';
+    if (outcomes[i].error.empty()) {
+      stream << outcomes[i].rows;
+      file.check_stream(stream);
       continue;
     }
-    stream << outcomes[i].rows;
-    file.check_stream(stream);
+    ++failed;
+    std::string described;
+    for (std::size_t k = 0; k < plan.parameters.size(); ++k) {
+      described += plan.parameters[k].path + "=" + members[i].values[k] + ", ";
+    }
+    err << "calder: sweep: member " << i << " (" << described << "seed " << members[i].seed
+        << ") failed: " << outcomes[i].error << '\n';
   }
+  return failed;
+}
+
+}  // namespace
+
+void sweep_command(const SweepOptions& options, std::ostream& out, std::ostream& err) {
+  const SweepPlan plan = parse_plan(options);
+  const Scene base = load_scene_argument(options.scene);
+  const std::vector<Member> members = sweep_members(options, plan, base);
+
+  std::vector<NamedPath> inputs;
+  struct stat info {};
+  if (::stat(options.scene.c_str(), &info) == 0) {
+    inputs.push_back({"the scene file", options.scene});
+  }
+  check_outputs(inputs, {{"--output", options.output}}, std::nullopt);
+  OutputFile file(options.output);
+  std::ostream& stream = file.is_stdout() ? out : file.stream();
+
+  const std::vector<Outcome> outcomes =
+      run_members(members, plan, "sweep " + printable(base.name), err);
+  const std::size_t failed = write_table(stream, file, plan, members, outcomes, err);
   if (file.is_stdout()) {
     out.flush();
     if (!out) throw RunError("standard output: write failed");
