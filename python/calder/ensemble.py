@@ -131,9 +131,14 @@ class Ensemble:
             raise Error(f"Ensemble: threads must be an integer >= 0 (got {threads!r})")
         self.members: List[Member] = []
         for combination in combinations:
+            # Read once per combination; the seeds only change the scene's seed.
+            built = self._combination_scene(base, combination, edit, edit_names)
             for member_seed_value in self.seeds:
-                self.members.append(self._member(base, combination, member_seed_value, edit,
-                                                 edit_names, frames))
+                if member_seed_value is not None:
+                    built.seed = member_seed_value
+                member_frames = built.frames if frames is None else frames
+                self.members.append(Member(len(self.members), built.seed, combination,
+                                           built.to_toml(), member_frames))
         self.frames = frames
         folder = self._checkpoint_folder(checkpoint)
         self.plan = self._plan(record, every, folder, checkpoint_every, threads)
@@ -193,12 +198,10 @@ class Ensemble:
             hint = f" nor a parameter of edit ({', '.join(edit_names)})" if edit_names else ""
             raise Error(f"Ensemble: vary {name!r} is not a scene parameter{hint}: {error}") from None
 
-    def _member(self, base: SceneEdit, combination: Dict[str, Any], seed: Optional[int],
-                edit: Optional[Callable], edit_names: List[str], frames: Optional[int]) -> Member:
+    def _combination_scene(self, base: SceneEdit, combination: Dict[str, Any],
+                           edit: Optional[Callable], edit_names: List[str]) -> Scene:
         index = len(self.members)
         scene = SceneEdit(base)
-        if seed is not None:
-            scene["seed"] = seed
         for name, value in combination.items():
             if name not in edit_names:
                 try:
@@ -212,10 +215,8 @@ class Ensemble:
             except Error as error:
                 raise Error(f"Ensemble: edit{own or ''} of member {index}: {error}") from None
         described = ", ".join(f"{k}={v!r}" for k, v in combination.items())
-        built = scene.scene(f"Ensemble: member {index} ({described or 'the scene'})"
-                            if combination else "Ensemble")
-        member_frames = built.frames if frames is None else frames
-        return Member(index, built.seed, combination, built.to_toml(), member_frames)
+        return scene.scene(f"Ensemble: member {index} ({described or 'the scene'})"
+                           if combination else "Ensemble")
 
     # --- records and checkpoints --------------------------------------------------
 
@@ -501,9 +502,16 @@ def _dask_results(client: Any, plan: Plan, members: Sequence[Member],
     batches = _batches(members, slots, batch_size)
     futures = [client.submit(run_batch, plan, batch, key=f"calder-members-{token}-{i}",
                              pure=False) for i, batch in enumerate(batches)]
+    batch_of = {future.key: batch for future, batch in zip(futures, batches)}
     try:
         for future in as_completed(futures):
-            for result in future.result():
+            try:
+                results = future.result()
+            except Exception as error:  # noqa: BLE001 - e.g. KilledWorker: its members failed
+                message = f"{type(error).__name__}: {error}"
+                results = [MemberResult(m.index, "failed", {}, error=message)
+                           for m in batch_of[future.key]]
+            for result in results:
                 yield result
     finally:
         client.cancel(futures)
