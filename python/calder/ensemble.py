@@ -381,7 +381,7 @@ class Ensemble:
         return pandas.DataFrame(columns)
 
     def _to_xarray(self, table):
-        xarray = _xarray()
+        _xarray()  # its message, if missing
         per_member = ["seed", *self.parameter_names]
         keys = ["member", "frame"] + (["body"] if self.plan.bodies else [])
         members = table.drop_duplicates("member").set_index("member")[per_member]

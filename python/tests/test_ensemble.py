@@ -65,6 +65,20 @@ def expect_bits(table, expected):
             assert np.array_equal(a, b), column
 
 
+@pytest.mark.parametrize("name", [name for name, _ in calder.builtin_scenes()])
+def test_a_scene_edit_gives_the_scene_back_and_every_path_reads_and_sets(name):
+    original = calder.Scene(name).to_toml()
+    edit = calder.SceneEdit(name)
+    assert edit.scene().to_toml() == original  # the TOML writer's round trip
+    paths = list(edit.paths())
+    assert "world.dt" in paths and "seed" in paths
+    for path in paths:
+        edit[path] = edit[path]
+    assert edit.scene().to_toml() == original
+    edit["world.dt"] = 0.25
+    assert "dt = 0.25" in edit.scene().to_toml()
+
+
 def test_member_seeds_are_splitmix64():
     # SplitMix64's first output from state 0 is 0xE220A8397B1DCDAF (the
     # reference implementation's published value): its top 32 bits.
