@@ -79,6 +79,26 @@ def test_a_scene_edit_gives_the_scene_back_and_every_path_reads_and_sets(name):
     assert "dt = 0.25" in edit.scene().to_toml()
 
 
+def test_import_calder_and_an_ensemble_need_neither_pandas_nor_dask():
+    script = textwrap.dedent("""
+        import sys
+        for name in ("pandas", "dask", "distributed", "xarray", "tqdm"):
+            sys.modules[name] = None  # import fails, as where they are not installed
+        import calder
+        ensemble = calder.Ensemble("example-2.7", seeds=2, frames=3)
+        result = next(ensemble.results(workers=1))
+        assert result.status == "ran" and len(result.data["state_hash"]) == 1
+        try:
+            ensemble.run()
+        except calder.Error as error:
+            print(error)
+    """)
+    run = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True,
+                         check=True)
+    assert run.stdout == ("Ensemble.run needs pandas (Debian: python3-pandas; "
+                          "scripts/setup python installs it)\n")
+
+
 def test_member_seeds_are_splitmix64():
     # SplitMix64's first output from state 0 is 0xE220A8397B1DCDAF (the
     # reference implementation's published value): its top 32 bits.
