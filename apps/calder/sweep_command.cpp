@@ -169,6 +169,7 @@ struct Member {
   std::uint32_t seed = 0;
   std::vector<std::string> values;  // one per --set, as given
   Scene scene;
+  std::vector<std::string> columns;  // the values of the table's columns (not seed's: it has one)
 };
 
 #ifdef CALDER_APP_HAS_SCENE_FILE
@@ -323,7 +324,10 @@ std::vector<Member> make_members(const Scene& base, const std::vector<Parameter>
       }
       std::ostringstream text;
       text << edited;
-      Member member{members.size(), 0, values, {}};
+      Member member{members.size(), 0, values, {}, {}};
+      for (std::size_t k = 0; k < parameters.size(); ++k) {
+        if (parameters[k].path != "seed") member.columns.push_back(values[k]);
+      }
       try {
         member.scene = parse_scene(text.str(), "<scene>");
         member.scene.validate();
@@ -370,7 +374,7 @@ Outcome run_member(const Member& member, const Records& records, std::optional<s
                    const std::atomic<bool>& stop) {
   Outcome outcome;
   std::string head = std::to_string(member.index) + "," + std::to_string(member.seed);
-  for (const std::string& value : member.values) head += "," + csv_field(value);
+  for (const std::string& value : member.columns) head += "," + csv_field(value);
   try {
     Simulation simulation(member.scene);
     simulation.world().set_threads(1);  // the cores go to members
@@ -539,7 +543,7 @@ std::vector<Member> sweep_members(const SweepOptions& options, const SweepPlan& 
   }
   std::vector<Member> members;
   for (const std::uint32_t seed : plan.seeds) {
-    Member member{members.size(), seed, {}, base};
+    Member member{members.size(), seed, {}, base, {}};
     if (options.seeds) member.scene.world.seed = seed;
     member.seed = member.scene.world.seed;
     if (plan.frames >= 0) member.scene.frames = plan.frames;
@@ -586,7 +590,9 @@ std::vector<Outcome> run_members(const std::vector<Member>& members, const Sweep
 
 std::string table_header(const SweepPlan& plan) {
   std::string header = "member,seed";
-  for (const Parameter& p : plan.parameters) header += "," + csv_field(p.path);
+  for (const Parameter& p : plan.parameters) {
+    if (p.path != "seed") header += "," + csv_field(p.path);  // the seed column holds it
+  }
   header += plan.records.bodies.empty() ? ",frame" : ",frame,body";
   for (const std::string& name : plan.records.scalars) header += "," + name;
   for (const std::string& name : plan.records.bodies) header += "," + name;

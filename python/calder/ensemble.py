@@ -370,6 +370,8 @@ class Ensemble:
             "member": np.repeat(np.array([m.index for m in members], np.int64), counts),
             "seed": np.repeat(np.array([m.seed for m in members], np.int64), counts)}
         for name in self.parameter_names:
+            if name == "seed":
+                continue  # the seed column holds it
             values = [m.parameters.get(name) for m in members]
             repeated = np.empty(len(values), dtype=object)
             repeated[:] = values
@@ -382,7 +384,7 @@ class Ensemble:
 
     def _to_xarray(self, table):
         _xarray()  # its message, if missing
-        per_member = ["seed", *self.parameter_names]
+        per_member = ["seed", *(n for n in self.parameter_names if n != "seed")]
         keys = ["member", "frame"] + (["body"] if self.plan.bodies else [])
         members = table.drop_duplicates("member").set_index("member")[per_member]
         scalars = [c for c in table.columns if c not in keys + per_member]

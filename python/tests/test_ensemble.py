@@ -323,6 +323,13 @@ def test_calder_sweep_gives_the_ensembles_numbers(calder_exe, tmp_path):
                     "--output", str(output), "--jobs", "2"], check=True, capture_output=True)
     table = pandas.read_csv(output, dtype={"state_hash": np.uint64}, float_precision="round_trip")
     expect_bits(table, expected)
+    # Seeds as a parameter: the seed column holds them, on both sides.
+    by_seed = calder.Ensemble(SCENE, vary={"seed": [4, 9]}, frames=3).run(workers=1)
+    subprocess.run([calder_exe, "sweep", SCENE, "--set", "seed=4,9", "--frames", "3",
+                    "--output", str(output)], check=True)
+    expect_bits(pandas.read_csv(output, dtype={"state_hash": np.uint64},
+                                float_precision="round_trip"), by_seed)
+    assert by_seed.seed.tolist() == [4, 9]
     # Body columns, one row per body, as the ensemble's.
     bodies = calder.Ensemble("example-2.7", seeds=[3], frames=5, record=["bodies"]).run(workers=1)
     subprocess.run([calder_exe, "sweep", "example-2.7", "--seeds", "3", "--frames", "5",
