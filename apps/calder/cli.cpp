@@ -12,6 +12,7 @@
 #include "errors.hpp"
 #include "render_command.hpp"
 #include "run_command.hpp"
+#include "sweep_command.hpp"
 #include "window_command.hpp"
 
 #ifndef CALDER_VERSION
@@ -26,7 +27,7 @@ namespace {
 // went wrong and which --help to read.
 std::string usage_message(const CLI::ParseError& e, const CLI::App& app, int argc,
                           const char* const* argv) {
-  const std::vector<std::string> verbs = {"run", "render", "window"};
+  const std::vector<std::string> verbs = {"run", "render", "window", "sweep"};
   std::string hint = "see 'calder --help'";
   bool no_command = !app.get_subcommand("list")->parsed();
   for (const std::string& verb : verbs) {
@@ -37,15 +38,15 @@ std::string usage_message(const CLI::ParseError& e, const CLI::App& app, int arg
   }
   std::string what = e.what();
   if (dynamic_cast<const CLI::RequiredError*>(&e) != nullptr && argc <= 1) {
-    what = "a command is required: list, run, render or window";
+    what = "a command is required: list, run, render, window or sweep";
   }
   if (no_command && argc > 1 && argv[1][0] != '-') {
-    const std::vector<std::string_view> commands = {"list", "run", "render", "window"};
+    const std::vector<std::string_view> commands = {"list", "run", "render", "window", "sweep"};
     what = "unknown command '" + detail::printable(argv[1]) + "'";
     if (const auto near = detail::closest(argv[1], commands)) {
       what += " (did you mean '" + std::string(*near) + "'?)";
     }
-    what += "; the commands are list, run, render and window";
+    what += "; the commands are list, run, render, window and sweep";
   }
   return what + " (" + hint + ")";
 }
@@ -64,10 +65,12 @@ struct Parser {
   RunOptions run_options;
   RenderOptions render_options;
   WindowOptions window_options;
+  SweepOptions sweep_options;
   CLI::App* run = nullptr;
   CLI::App* render = nullptr;
   CLI::App* window = nullptr;
   CLI::App* devices = nullptr;  // devices_command.hpp
+  CLI::App* sweep = nullptr;    // sweep_command.hpp
 
   Parser() {
     app.set_version_flag("--version", std::string("calder ") + CALDER_VERSION);
@@ -80,6 +83,7 @@ struct Parser {
     render = add_render_command(app, render_options);
     window = add_window_command(app, window_options);
     devices = add_devices_command(app);
+    sweep = add_sweep_command(app, sweep_options);
   }
 };
 
@@ -90,6 +94,7 @@ int main(int argc, const char* const* argv, std::ostream& out, std::ostream& err
   parser.run_options = {};
   parser.render_options = {};
   parser.window_options = {};
+  parser.sweep_options = {};
   CLI::App& app = parser.app;
   const RunOptions& run_options = parser.run_options;
   CLI::App* run = parser.run;
@@ -115,6 +120,8 @@ int main(int argc, const char* const* argv, std::ostream& out, std::ostream& err
       render_command(render_options, out, err);
     } else if (window->parsed()) {
       window_command(window_options, out, err);
+    } else if (parser.sweep->parsed()) {
+      sweep_command(parser.sweep_options, out, err);
     } else if (parser.devices->parsed()) {
       devices_command(out);
     } else {

@@ -13,6 +13,9 @@ calder._calder); this package re-exports it and adds a few helpers.
     world.step(100)
     world.y          # read-only numpy view of every body's y
 
+Many runs of one scene (seeds, parameter grids), on the local cores or a
+Dask cluster, checkpointed: calder.Ensemble (python/README.md, "Ensembles").
+
 Errors: calder.Error (a ValueError) with calder's message.
 """
 
@@ -21,10 +24,15 @@ from __future__ import annotations
 from . import _calder
 from ._calder import *  # noqa: F401,F403  (the engine's API)
 from ._calder import Canvas, GifWriter, Simulation, Error, SceneFileError  # noqa: F401
+from .ensemble import Ensemble, member_seed  # noqa: F401  (pandas and Dask only when run)
+from .scene_edit import SceneEdit  # noqa: F401
 
 __all__ = [name for name in dir(_calder) if not name.startswith("_")] + [
     "frame_image",
     "render_gif",
+    "Ensemble",
+    "member_seed",
+    "SceneEdit",
 ]
 
 
