@@ -30,7 +30,7 @@
 // frame_rate() says otherwise), HiDPI aware; headless (no display, or any of
 // --gif, --png, --trajectory, --headless) it draws --frames frames as fast as
 // it can. Every sketch understands the flags of `calder render`:
-//   --frames N  --gif FILE  --png DIR  --scale S  --fps F
+//   --frames N  --gif FILE  --png DIR  --scale S  --fps F  --every K
 //   --mouse-pressed A-B (frames A to B, repeatable)  --mouse X,Y  --seed S
 // and --trajectory FILE (the world given to record() as CSV, "-" for
 // stdout), --window, --headless, --exit-after-seconds S, --help (docs/SKETCH.md).
@@ -71,6 +71,7 @@ struct SketchOptions {
   std::optional<std::string> trajectory;  // CSV of the recorded world, "-": stdout
   double scale = 1.0;                     // pixel density (times the display's in a window)
   double gif_fps = 30.0;                  // as `calder render --fps`
+  std::int64_t every = 1;                 // --gif and --png take every K-th frame
   std::uint32_t seed = 1;
   // Scripted mouse: held in these frames (inclusive draw() numbers, 1-based)
   // and at this position; given, they replace the live mouse in a window.

@@ -115,6 +115,7 @@ std::string sketch_usage(const std::string& program) {
          "  --scale S           pixel density, in (0, 8] (default 1; a window: times the "
          "display's)\n"
          "  --fps F             the GIF's frames per second, 0.01 to 100 (default 30)\n"
+         "  --every K           --gif and --png take frames K, 2K, ... (default 1)\n"
          "  --mouse-pressed A-B the mouse held in frames A to B (repeatable; replaces the live "
          "mouse)\n"
          "  --mouse X,Y         the mouse at X,Y (canvas pixels; replaces the live mouse)\n"
@@ -168,6 +169,8 @@ SketchOptions parse_sketch_options(int argc, const char* const* argv, bool* help
       const double fps = parse_range(flag, value(), 0.0, 100.0, "a number from 0.01 to 100");
       if (fps < 0.01) throw Error("--fps: expected a number from 0.01 to 100");
       options.gif_fps = fps;
+    } else if (flag == "--every") {
+      options.every = parse_count(flag, value(), 1, kMaxFrames);
     } else if (flag == "--mouse-pressed") {
       options.mouse_pressed.push_back(parse_frames_range(flag, value()));
     } else if (flag == "--mouse") {
@@ -293,6 +296,8 @@ void SketchRunner::draw_frame() {
 
 void SketchRunner::write_outputs() {
   const std::int64_t frame = sketch_.frame_count_;
+  if (trajectory_) trajectory_->write(frame, *sketch_.recorded_);
+  if (frame % options_.every != 0) return;
   if (gif_) gif_->add_frame(*canvas_);
   if (options_.png) {
     char name[32];
@@ -300,7 +305,6 @@ void SketchRunner::write_outputs() {
     canvas_->write_png((std::filesystem::path(*options_.png) / name).string());
     ++pngs_;
   }
-  if (trajectory_) trajectory_->write(frame, *sketch_.recorded_);
 }
 
 void SketchRunner::finish() {
