@@ -45,6 +45,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -79,7 +80,10 @@ struct SketchOptions {
   std::optional<Vec2> mouse;
   std::optional<double> exit_after_seconds;  // a window closes after this long
   bool quiet = false;                        // no line on stderr about what was written
-  std::string program = "sketch";            // for messages
+  // Called once a display frame in a window, and before each frame headless;
+  // what it throws stops the run (the calder command stops on a signal).
+  std::function<void()> poll;
+  std::string program = "sketch";  // for messages
 };
 
 // Parses the runner's flags (argv[0] is the program). Throws calder::Error
@@ -103,6 +107,9 @@ class Sketch {
   virtual void mouse_released() {}
   virtual void mouse_dragged() {}  // the mouse moved with a button held
   virtual void key_pressed() {}
+  // Once, when the sketch ends (the window closed, --frames drawn,
+  // exit_sketch()), the canvas still there: save what is left.
+  virtual void on_exit() {}
 
  protected:
   // --- the canvas ---
@@ -222,8 +229,10 @@ class Sketch {
   const World* recorded_ = nullptr;
 };
 
-// Runs a sketch with options; throws calder::Error (one line) for what it
-// cannot do: an output that cannot be written, no display for a window.
+// Runs a sketch with options; throws calder::InputError (one line) for what
+// it cannot do from the start (no display for a window, an output folder
+// that cannot be made), calder::RunError or calder::Error for what fails
+// while it runs, and whatever the sketch's own functions throw.
 void run_sketch(Sketch& sketch, const SketchOptions& options);
 
 // Parses the flags and runs the sketch: the exit status for main. Prints the

@@ -11,6 +11,6 @@ std::string sketch_no_display_reason() {
 
 bool sketch_has_window() { return false; }
 
-void run_sketch_window(SketchRunner& /*runner*/) { throw Error(sketch_no_display_reason()); }
+void run_sketch_window(SketchRunner& /*runner*/) { throw InputError(sketch_no_display_reason()); }
 
 }  // namespace calder

@@ -52,8 +52,8 @@ std::int64_t parse_count(const std::string& flag, const std::string& text, std::
                          std::int64_t high) {
   const std::optional<std::int64_t> value = to_integer(text);
   if (!value || *value < low || *value > high) {
-    throw Error(flag + ": expected an integer from " + std::to_string(low) + " to " +
-                std::to_string(high) + ", got " + quote(text));
+    throw InputError(flag + ": expected an integer from " + std::to_string(low) + " to " +
+                     std::to_string(high) + ", got " + quote(text));
   }
   return *value;
 }
@@ -62,7 +62,7 @@ double parse_range(const std::string& flag, const std::string& text, double low,
                    const char* what) {
   const std::optional<double> value = to_number(text);
   if (!value || !(*value > low && *value <= high)) {
-    throw Error(flag + ": expected " + what + ", got " + quote(text));
+    throw InputError(flag + ": expected " + what + ", got " + quote(text));
   }
   return *value;
 }
@@ -74,7 +74,7 @@ Vec2 parse_point(const std::string& flag, const std::string& text) {
     const std::optional<double> y = to_number(text.substr(comma + 1));
     if (x && y) return {*x, *y};
   }
-  throw Error(flag + ": expected X,Y (two finite numbers), got " + quote(text));
+  throw InputError(flag + ": expected X,Y (two finite numbers), got " + quote(text));
 }
 
 std::pair<std::int64_t, std::int64_t> parse_frames_range(const std::string& flag,
@@ -85,20 +85,20 @@ std::pair<std::int64_t, std::int64_t> parse_frames_range(const std::string& flag
     const std::optional<std::int64_t> b = to_integer(text.substr(dash + 1));
     if (a && b && *a >= 1 && *b >= *a && *b <= kMaxFrames) return {*a, *b};
   }
-  throw Error(flag + ": expected A-B, frames with 1 <= A <= B <= " + std::to_string(kMaxFrames) +
-              ", got " + quote(text));
+  throw InputError(flag + ": expected A-B, frames with 1 <= A <= B <= " +
+                   std::to_string(kMaxFrames) + ", got " + quote(text));
 }
 
 // The parent folder of an output file must exist (nothing is made for it).
 void check_output_file(const std::string& flag, const std::string& path) {
-  if (path.empty()) throw Error(flag + ": expected a file name, got ''");
+  if (path.empty()) throw InputError(flag + ": expected a file name, got ''");
   if (flag == "--trajectory" && path == "-") return;
   namespace fs = std::filesystem;
   std::error_code ec;
-  if (fs::is_directory(path, ec)) throw Error(flag + ": " + quote(path) + " is a folder");
+  if (fs::is_directory(path, ec)) throw InputError(flag + ": " + quote(path) + " is a folder");
   const fs::path parent = fs::path(path).parent_path();
   if (!parent.empty() && !fs::is_directory(parent, ec)) {
-    throw Error(flag + ": no folder " + quote(parent.string()) + " for " + quote(path));
+    throw InputError(flag + ": no folder " + quote(parent.string()) + " for " + quote(path));
   }
 }
 
@@ -143,11 +143,11 @@ SketchOptions parse_sketch_options(int argc, const char* const* argv, bool* help
     }
     const auto value = [&]() -> std::string {
       if (inline_value) return *inline_value;
-      if (i + 1 >= argc) throw Error(flag + ": expects a value");
+      if (i + 1 >= argc) throw InputError(flag + ": expects a value");
       return argv[++i];
     };
     const auto no_value = [&] {
-      if (inline_value) throw Error(flag + ": takes no value");
+      if (inline_value) throw InputError(flag + ": takes no value");
     };
     if (flag == "--help" || flag == "-h") {
       if (help != nullptr) *help = true;
@@ -159,7 +159,7 @@ SketchOptions parse_sketch_options(int argc, const char* const* argv, bool* help
       check_output_file(flag, *options.gif);
     } else if (flag == "--png") {
       options.png = value();
-      if (options.png->empty()) throw Error("--png: expected a folder, got ''");
+      if (options.png->empty()) throw InputError("--png: expected a folder, got ''");
     } else if (flag == "--trajectory") {
       options.trajectory = value();
       check_output_file(flag, *options.trajectory);
@@ -167,7 +167,7 @@ SketchOptions parse_sketch_options(int argc, const char* const* argv, bool* help
       options.scale = parse_range(flag, value(), 0.0, Canvas::max_scale, "a number in (0, 8]");
     } else if (flag == "--fps") {
       const double fps = parse_range(flag, value(), 0.0, 100.0, "a number from 0.01 to 100");
-      if (fps < 0.01) throw Error("--fps: expected a number from 0.01 to 100");
+      if (fps < 0.01) throw InputError("--fps: expected a number from 0.01 to 100");
       options.gif_fps = fps;
     } else if (flag == "--every") {
       options.every = parse_count(flag, value(), 1, kMaxFrames);
@@ -190,11 +190,11 @@ SketchOptions parse_sketch_options(int argc, const char* const* argv, bool* help
       no_value();
       options.quiet = true;
     } else {
-      throw Error("unknown flag " + quote(flag) + " (--help lists them)");
+      throw InputError("unknown flag " + quote(flag) + " (--help lists them)");
     }
   }
   if (options.mode == SketchOptions::Mode::window && (options.gif || options.png)) {
-    throw Error("--window: --gif and --png are headless; a window saves with save_frame()");
+    throw InputError("--window: --gif and --png are headless; a window saves with save_frame()");
   }
   return options;
 }
@@ -240,13 +240,13 @@ void SketchRunner::setup() {
     std::error_code ec;
     std::filesystem::create_directories(*options_.png, ec);
     if (!std::filesystem::is_directory(*options_.png)) {
-      throw Error("--png: cannot make the folder " + quote(*options_.png) +
-                  (ec ? ": " + ec.message() : std::string()));
+      throw InputError("--png: cannot make the folder " + quote(*options_.png) +
+                       (ec ? ": " + ec.message() : std::string()));
     }
   }
   if (options_.trajectory) {
     if (sketch_.recorded_ == nullptr) {
-      throw Error("--trajectory: this sketch records no world (it calls record() in setup())");
+      throw InputError("--trajectory: this sketch records no world (it calls record() in setup())");
     }
     trajectory_.emplace(*options_.trajectory == "-" ? std::cout : trajectory_text_);
     trajectory_->write(0, *sketch_.recorded_);
@@ -308,6 +308,7 @@ void SketchRunner::write_outputs() {
 }
 
 void SketchRunner::finish() {
+  sketch_.on_exit();
   if (gif_) gif_->finish();
   if (options_.trajectory && *options_.trajectory != "-") {
     OutputFile file("--trajectory", *options_.trajectory);
@@ -361,7 +362,10 @@ namespace {
 
 void run_headless(SketchRunner& runner) {
   runner.setup();
-  while (runner.wants_draw()) runner.draw_frame();
+  while (runner.wants_draw()) {
+    if (runner.options().poll) runner.options().poll();
+    runner.draw_frame();
+  }
   runner.finish();
 }
 
@@ -407,7 +411,7 @@ int run_sketch(Sketch& sketch, int argc, char** argv) {
       const std::string reason = sketch_no_display_reason();
       if (!reason.empty()) {
         std::cerr << options.program << ": " << reason
-                  << ": run headless with --gif FILE, --png DIR or --trajectory FILE (--help)\n";
+                  << "; run headless with --gif FILE, --png DIR or --trajectory FILE (--help)\n";
         return 2;
       }
     }
@@ -417,6 +421,9 @@ int run_sketch(Sketch& sketch, int argc, char** argv) {
   }
   try {
     run_sketch(sketch, options);
+  } catch (const InputError& e) {  // an output that can't be made, no display
+    std::cerr << options.program << ": " << e.what() << '\n';
+    return 2;
   } catch (const std::exception& e) {
     std::cerr << options.program << ": " << e.what() << '\n';
     return 1;

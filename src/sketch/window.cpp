@@ -100,7 +100,7 @@ class Window {
     texture_.reset(SDL_CreateTexture(renderer_.get(), SDL_PIXELFORMAT_ARGB8888,
                                      SDL_TEXTUREACCESS_STREAMING, runner_.canvas().pixel_width(),
                                      runner_.canvas().pixel_height()));
-    if (!texture_) throw Error("cannot create an SDL texture: " + sdl_error());
+    if (!texture_) throw RunError("cannot create an SDL texture: " + sdl_error());
     SDL_SetTextureBlendMode(texture_.get(), SDL_BLENDMODE_NONE);
     loop();
     runner_.finish();
@@ -109,7 +109,7 @@ class Window {
  private:
   void init() {
     const std::string reason = sketch_no_display_reason();
-    if (!reason.empty()) throw Error(reason);
+    if (!reason.empty()) throw InputError(reason);
     if (!env_set("SDL_VIDEODRIVER")) {
       SDL_SetHint(SDL_HINT_VIDEODRIVER, env_set("WAYLAND_DISPLAY") ? "wayland,x11" : "x11");
     }
@@ -118,7 +118,7 @@ class Window {
     if (SDL_Init(SDL_INIT_VIDEO) != 0) {
       const std::string reason_sdl = sdl_error();
       SDL_Quit();
-      throw Error("no display: " + reason_sdl);
+      throw InputError("no display: " + reason_sdl);
     }
     video_ = std::make_unique<SdlVideo>();
     // With DISPLAY set but no server behind it, SDL falls back to a driver
@@ -127,9 +127,9 @@ class Window {
     const std::string driver_name = driver != nullptr ? driver : "";
     if (!env_set("SDL_VIDEODRIVER") && driver_name != "x11" && driver_name != "wayland") {
       const char* display = std::getenv("DISPLAY");
-      throw Error("no display: cannot connect to DISPLAY '" +
-                  detail::printable(display != nullptr ? display : "") + "' (SDL found only its '" +
-                  driver_name + "' driver)");
+      throw InputError("no display: cannot connect to DISPLAY '" +
+                       detail::printable(display != nullptr ? display : "") +
+                       "' (SDL found only its '" + driver_name + "' driver)");
     }
   }
 
@@ -142,12 +142,12 @@ class Window {
     window_.reset(SDL_CreateWindow(runner_.title().c_str(), SDL_WINDOWPOS_CENTERED,
                                    SDL_WINDOWPOS_CENTERED, w, h,
                                    SDL_WINDOW_SHOWN | SDL_WINDOW_ALLOW_HIGHDPI));
-    if (!window_) throw Error("no display: cannot open a window: " + sdl_error());
+    if (!window_) throw InputError("no display: cannot open a window: " + sdl_error());
     shown_title_ = runner_.title();
     renderer_.reset(SDL_CreateRenderer(window_.get(), -1,
                                        SDL_RENDERER_ACCELERATED | SDL_RENDERER_PRESENTVSYNC));
     if (!renderer_) renderer_.reset(SDL_CreateRenderer(window_.get(), -1, SDL_RENDERER_SOFTWARE));
-    if (!renderer_) throw Error("cannot create an SDL renderer: " + sdl_error());
+    if (!renderer_) throw RunError("cannot create an SDL renderer: " + sdl_error());
     SDL_RendererInfo info{};
     if (SDL_GetRendererInfo(renderer_.get(), &info) == 0) {
       vsync_ = (info.flags & SDL_RENDERER_PRESENTVSYNC) != 0;
@@ -171,13 +171,15 @@ class Window {
     bool running = !runner_.finished();
     bool shown = false;  // the texture shows the canvas
     while (running) {
+      if (runner_.options().poll) runner_.options().poll();
       SDL_Event event;
       while (SDL_PollEvent(&event) != 0) {
         if (event.type == SDL_QUIT) running = false;
         if (event.type == SDL_WINDOWEVENT && event.window.event == SDL_WINDOWEVENT_EXPOSED) {
           shown = false;
         }
-        handle(event);
+        // An event function may draw on the canvas (a key that redraws).
+        if (handle(event)) shown = false;
       }
       const Uint64 now = SDL_GetPerformanceCounter();
       const double elapsed = std::min(static_cast<double>(now - last) / frequency, 0.25);
@@ -225,27 +227,26 @@ class Window {
     }
   }
 
-  void handle(const SDL_Event& event) {
+  // Hands an event to the sketch; true when one of its functions ran.
+  bool handle(const SDL_Event& event) {
     const double s = points_per_canvas_pixel_;
     switch (event.type) {
       case SDL_KEYDOWN:
         runner_.key_down(key_name(event.key.keysym), event.key.repeat != 0);
-        break;
+        return true;
       case SDL_MOUSEMOTION:
         runner_.mouse_moved(event.motion.x / s, event.motion.y / s);
-        break;
+        return true;
       case SDL_MOUSEBUTTONDOWN:
-        if (event.button.button == SDL_BUTTON_LEFT) {
-          runner_.mouse_down(event.button.x / s, event.button.y / s);
-        }
-        break;
+        if (event.button.button != SDL_BUTTON_LEFT) return false;
+        runner_.mouse_down(event.button.x / s, event.button.y / s);
+        return true;
       case SDL_MOUSEBUTTONUP:
-        if (event.button.button == SDL_BUTTON_LEFT) {
-          runner_.mouse_up(event.button.x / s, event.button.y / s);
-        }
-        break;
+        if (event.button.button != SDL_BUTTON_LEFT) return false;
+        runner_.mouse_up(event.button.x / s, event.button.y / s);
+        return true;
       default:
-        break;
+        return false;
     }
   }
 
@@ -264,7 +265,7 @@ class Window {
 
 std::string sketch_no_display_reason() {
   if (!env_set("SDL_VIDEODRIVER") && !env_set("DISPLAY") && !env_set("WAYLAND_DISPLAY")) {
-    return "no display (neither DISPLAY nor WAYLAND_DISPLAY is set)";
+    return "no display: neither DISPLAY nor WAYLAND_DISPLAY is set";
   }
   return "";
 }
