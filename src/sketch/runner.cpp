@@ -309,6 +309,9 @@ void SketchRunner::write_outputs() {
 
 void SketchRunner::finish() {
   sketch_.on_exit();
+  if (gif_ && gif_->frame_count() == 0) {
+    throw InputError("--gif: no frame was drawn (--frames 0, or no_loop() in setup())");
+  }
   if (gif_) gif_->finish();
   if (options_.trajectory && *options_.trajectory != "-") {
     OutputFile file("--trajectory", *options_.trajectory);

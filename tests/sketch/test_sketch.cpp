@@ -461,6 +461,17 @@ TEST(SketchOptions, BadFlagsSayWhichAndWhy) {
   EXPECT_EQ(message({"--bogus"}), "unknown flag '--bogus' (--help lists them)");
 }
 
+TEST(SketchOptions, AGifOfNoFrameIsAnErrorAndLeavesNoFile) {
+  const std::filesystem::path path =
+      std::filesystem::temp_directory_path() / "calder-sketch-no-frame.gif";
+  std::filesystem::remove(path);
+  Probe p;
+  calder::SketchOptions options = headless(0);
+  options.gif = path.string();
+  EXPECT_THROW(calder::run_sketch(p, options), calder::InputError);
+  EXPECT_FALSE(std::filesystem::exists(path));
+}
+
 TEST(SketchOptions, TrajectoryWithoutARecordedWorldIsAnError) {
   Probe p;
   calder::SketchOptions options = headless(1);
