@@ -96,6 +96,9 @@ class SceneSketch : public Sketch {
 
   void step_once();
   void draw_scene();
+  void apply_speed();
+  // Trails and recordings need every step drawn; otherwise once a frame.
+  [[nodiscard]] bool drawn_each_step() const { return style_.trails || recording_.has_value(); }
   void update_title();
   void save_png();
   void toggle_recording();
@@ -128,6 +131,7 @@ class SceneSketch : public Sketch {
   std::optional<std::int64_t> frame_limit_;
 
   bool paused_ = false;
+  double step_credit_ = 0.0;  // steps due in the next frames (speed above 1)
   // A press is held for the next step even if the button is released before
   // it (a quick click still resets 2.5).
   bool pending_press_ = false;
@@ -139,7 +143,7 @@ class SceneSketch : public Sketch {
 
 void SceneSketch::setup() {
   update_title();  // the window opens with it
-  frame_rate(kStepsPerSecond * speed_);
+  apply_speed();
   create_canvas(size_.width, size_.height);
   if (!options_.quiet) {
     err_ << "calder window " << detail::printable(simulation_.scene().name, 200) << ": "
@@ -152,9 +156,20 @@ void SceneSketch::setup() {
 
 void SceneSketch::draw() {
   interrupt_.check();  // the recording's temporary goes with the destructors
-  if (!at_frame_limit()) step_once();
+  // Above speed 1 a frame takes several steps (their credit carries over for
+  // speeds like 1.5) and is drawn once; below it the frame rate is lower.
+  step_credit_ += std::max(speed_, 1.0);
+  bool stepped = false;
+  while (step_credit_ >= 1.0 && !at_frame_limit()) {
+    step_credit_ -= 1.0;
+    step_once();
+    stepped = true;
+  }
+  if (stepped && !drawn_each_step()) draw_scene();
   if (at_frame_limit()) exit_sketch();
 }
+
+void SceneSketch::apply_speed() { frame_rate(kStepsPerSecond * std::min(speed_, 1.0)); }
 
 void SceneSketch::update_title() {
   std::string title = "calder: " + detail::printable(simulation_.scene().name, 200);
@@ -198,6 +213,7 @@ void SceneSketch::key_pressed() {
   } else if (k == ".") {
     if (paused_ && !at_frame_limit()) {
       step_once();
+      if (!drawn_each_step()) draw_scene();
       update_title();
     }
   } else if (k == "r") {
@@ -205,6 +221,7 @@ void SceneSketch::key_pressed() {
     simulation_ = start_simulation(input_);
     canvas().clear();
     pending_press_ = false;
+    step_credit_ = 0.0;
     draw_scene();
     update_title();
   } else if (k == "f") {
@@ -228,11 +245,11 @@ void SceneSketch::key_pressed() {
     }
   } else if (k == "+" || k == "=") {
     speed_ = std::min(speed_ * 2.0, max_speed);
-    frame_rate(kStepsPerSecond * speed_);
+    apply_speed();
     update_title();
   } else if (k == "-") {
     speed_ = std::max(speed_ / 2.0, min_speed);
-    frame_rate(kStepsPerSecond * speed_);
+    apply_speed();
     update_title();
   }
 }
@@ -254,7 +271,7 @@ void SceneSketch::step_once() {
     throw_run_failure(e, input_.source, simulation_.frame() + 1);
   }
   pending_press_ = false;
-  draw_scene();
+  if (drawn_each_step()) draw_scene();
   if (recording_ && simulation_.frame() % kGifEvery == 0) {
     try {
       recording_->add_frame(canvas());
