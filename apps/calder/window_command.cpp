@@ -16,7 +16,6 @@
 
 #include "calder/diagnostics.hpp"
 #include "calder/error.hpp"
-#include "calder/fixed_step.hpp"
 #include "calder/render.hpp"
 #include "calder/sketch.hpp"
 #include "calder/trajectory.hpp"
