@@ -58,8 +58,12 @@ class Circles : public calder::Sketch {
 };
 
 int main(int argc, char** argv) {
-  Circles sketch;
-  const int status = calder::run_sketch(sketch, argc, argv);
-  if (status == 0) sketch.report();
+  int status = 0;
+  {
+    Circles sketch;
+    status = calder::run_sketch(sketch, argc, argv);
+    if (status == 0) sketch.report();
+  }
+  calder::release_render_caches();
   return status;
 }

@@ -20,6 +20,14 @@
 
 namespace {
 
+// Cairo's and fontconfig's caches (text()) freed at the end, for leak checkers.
+class ReleaseRenderCaches : public ::testing::Environment {
+ public:
+  void TearDown() override { calder::release_render_caches(); }
+};
+[[maybe_unused]] ::testing::Environment* const release_caches =
+    ::testing::AddGlobalTestEnvironment(new ReleaseRenderCaches);
+
 using Pixel = std::array<int, 4>;
 
 Pixel pixel(const calder::Canvas& canvas, int x, int y) {
