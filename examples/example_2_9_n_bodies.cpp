@@ -1,39 +1,47 @@
 // SPDX-License-Identifier: MIT
 // Example 2.9: n Bodies. Ten bodies of random mass at random places attract
-// one another (G = 1, d clamped to [5, 25]). As in the book, body i moves
-// right after its forces are summed, so the bodies after it feel it moved.
-// Prints the trajectory as CSV: frame,body,x,y,vx,vy.
+// one another, each updated right after its forces, as in the book.
 //
-//   example_2_9_n_bodies [seed]   (default 1; same bits as
-//                                  `calder run example-2.9 --seed <seed>`)
+//   example_2_9_n_bodies [--seed S] [--gif FILE | --trajectory FILE ...]
+//   (the same bits as `calder run example-2.9 --seed S`)
 #include <calder/calder.hpp>
-#include <cstdlib>
-#include <iostream>
+#include <calder/sketch.hpp>
 #include <vector>
 
-int main(int argc, char** argv) {
-  const auto seed = static_cast<std::uint32_t>(argc > 1 ? std::strtoul(argv[1], nullptr, 10) : 1);
-  calder::World world({.width = 640, .height = 240, .seed = seed});
-  calder::Random& random = world.random();
+class NBodies : public calder::Sketch {
+  calder::World world{{.width = 640, .height = 240}};
   std::vector<calder::Mover> bodies;
-  for (int i = 0; i < 10; ++i) {
-    const double x = random.random(640);
-    const double y = random.random(240);
-    const double mass = random.random(0.1, 2);
-    bodies.push_back(world.add_mover({.position = {x, y}, .mass = mass, .radius = mass * 8}));
-  }
   const calder::AttractionLaw law =
       calder::AttractionLaw::book(1, 5, 25, calder::MassProduct::left_to_right);
 
-  calder::TrajectoryWriter out(std::cout);
-  out.write(0, world);
-  for (int frame = 1; frame <= 600; ++frame) {
+  void setup() override {
+    create_canvas(640, 240);
+    for (int i = 0; i < 10; ++i) {
+      const double x = random(width());
+      const double y = random(height());
+      const double mass = random(0.1, 2);
+      bodies.push_back(world.add_mover({.position = {x, y}, .mass = mass, .radius = mass * 8}));
+    }
+    record(world);
+  }
+
+  void draw() override {
+    background(255);
     for (std::size_t i = 0; i < bodies.size(); ++i) {
       for (std::size_t j = 0; j < bodies.size(); ++j) {
         if (i != j) bodies[i].apply_force(bodies[j].attract(bodies[i], law));
       }
       bodies[i].update();
+      show(bodies[i]);
     }
-    out.write(frame, world);
   }
-}
+
+  void show(const calder::Mover& b) {
+    stroke(0);
+    stroke_weight(2);
+    fill(127, 127);
+    circle(b.position().x, b.position().y, b.mass() * 16);
+  }
+};
+
+int main(int argc, char** argv) { return calder::run_sketch<NBodies>(argc, argv); }

@@ -3,10 +3,9 @@
 # their trajectories are the same to the last bit.
 #
 #   cmake -DEXAMPLE=<exe> -DCALDER=<exe> -DTRAJECTORY_DIFF=<exe> -DSCENE=<name>
-#         -DSEED=<n> -DFRAMES=<n> -DWORK_DIR=<dir> [-DSEED_ARGUMENT=ON] -P same_as_scene.cmake
+#         -DSEED=<n> -DFRAMES=<n> -DWORK_DIR=<dir> -P same_as_scene.cmake
 #
-# With SEED_ARGUMENT the example gets the seed as its only argument; without
-# it the example takes none (its scene draws no random numbers).
+# The example runs headless: --seed <n> --frames <n> --trajectory <csv>.
 cmake_minimum_required(VERSION 3.25)
 
 foreach(var IN ITEMS EXAMPLE CALDER TRAJECTORY_DIFF SCENE SEED FRAMES WORK_DIR)
@@ -19,14 +18,9 @@ set(example_csv "${WORK_DIR}/example-seed-${SEED}.csv")
 set(scene_csv "${WORK_DIR}/scene-seed-${SEED}.csv")
 file(REMOVE "${example_csv}" "${scene_csv}")
 
-set(example_args)
-if(SEED_ARGUMENT)
-  set(example_args "${SEED}")
-endif()
 execute_process(
-  COMMAND "${EXAMPLE}" ${example_args}
+  COMMAND "${EXAMPLE}" --seed "${SEED}" --frames "${FRAMES}" --trajectory "${example_csv}"
   INPUT_FILE /dev/null
-  OUTPUT_FILE "${example_csv}"
   RESULT_VARIABLE result)
 if(NOT result STREQUAL "0")
   message(FATAL_ERROR "example failed (${result}): ${EXAMPLE}")

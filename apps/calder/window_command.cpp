@@ -1,9 +1,6 @@
 // SPDX-License-Identifier: MIT
 #include "window_command.hpp"
 
-#define SDL_MAIN_HANDLED
-#include <SDL.h>
-
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <array>
@@ -19,8 +16,8 @@
 
 #include "calder/diagnostics.hpp"
 #include "calder/error.hpp"
-#include "calder/fixed_step.hpp"
 #include "calder/render.hpp"
+#include "calder/sketch.hpp"
 #include "calder/trajectory.hpp"
 #include "calder/world.hpp"
 #include "errors.hpp"
@@ -34,7 +31,6 @@ namespace calder::app {
 namespace {
 
 constexpr double kStepsPerSecond = 60.0;  // the sketches' frame rate, at speed 1
-constexpr int kMaxStepsPerFrame = 16;     // speed 8 on a 30 Hz display; more is dropped
 constexpr double kGifFps = 30.0;          // a GIF frame every other step at speed 1
 constexpr std::int64_t kGifEvery = 2;
 constexpr int kMaxGifFrames = 10'000;
@@ -59,16 +55,6 @@ double parse_seconds(const std::string& text) {
   return *value;
 }
 
-std::string sdl_error() {
-  const char* error = SDL_GetError();
-  return (error != nullptr && *error != '\0') ? std::string(error) : std::string("unknown error");
-}
-
-bool env_set(const char* name) {
-  const char* value = std::getenv(name);
-  return value != nullptr && *value != '\0';
-}
-
 std::string timestamp() {
   const std::time_t now = std::time(nullptr);
   std::tm local{};
@@ -78,60 +64,44 @@ std::string timestamp() {
   return text.data();
 }
 
-// SDL's objects, released in the reverse order of creation.
-struct SdlVideo {
-  SdlVideo() = default;
-  ~SdlVideo() { SDL_Quit(); }
-  SdlVideo(const SdlVideo&) = delete;
-  SdlVideo& operator=(const SdlVideo&) = delete;
-};
-struct DestroyWindow {
-  void operator()(SDL_Window* w) const { SDL_DestroyWindow(w); }
-};
-struct DestroyRenderer {
-  void operator()(SDL_Renderer* r) const { SDL_DestroyRenderer(r); }
-};
-struct DestroyTexture {
-  void operator()(SDL_Texture* t) const { SDL_DestroyTexture(t); }
-};
-
-// The running window: its state and what the keys do.
-class WindowApp {
+// `calder window`: a sketch that runs a scene and draws it, on calder::sketch's
+// window loop. Its keys and the live mouse drive the simulation.
+class SceneSketch : public Sketch {
  public:
-  WindowApp(const WindowOptions& options, const PreparedInput& input, std::ostream& out,
-            std::ostream& err)
+  SceneSketch(const WindowOptions& options, const PreparedInput& input, std::ostream& out,
+              std::ostream& err, const InterruptGuard& interrupt)
       : options_(options),
         input_(input),
         out_(out),
         err_(err),
+        interrupt_(interrupt),
         simulation_(start_simulation(input)),
         style_(make_style(input.scene, options.style)),
         size_(canvas_size(std::nullopt, options.scale, input.scene)),
-        canvas_(size_.width, size_.height, size_.scale),
         speed_(options.speed ? parse_speed(*options.speed) : 1.0),
-        pacer_(kStepsPerSecond * speed_, kMaxStepsPerFrame),
         scripted_(!options.input.mouse_pressed.empty() || options.input.mouse.has_value()) {
     if (options.input.frames) frame_limit_ = input.scene.frames;
-    if (options.exit_after_seconds) exit_after_ = parse_seconds(*options.exit_after_seconds);
     if (options.screenshot) check_output_path("--screenshot", *options.screenshot);
   }
 
-  // Until q, Escape, the window's close, --frames or --exit-after-seconds;
-  // a terminating signal stops it at the next frame (Interrupted).
-  void run(const InterruptGuard& interrupt);
+  [[nodiscard]] const CanvasSize& size() const { return size_; }
 
  private:
-  void open();
-  void handle(const SDL_Event& event);
-  void key(const SDL_KeyboardEvent& key);
+  void setup() override;
+  void draw() override;
+  void mouse_pressed() override;
+  void key_pressed() override;
+  void on_exit() override;
+
   void step_once();
-  void draw();
-  void present();
+  void draw_scene();
+  void apply_speed();
+  // Trails and recordings need every step drawn; otherwise once a frame.
+  [[nodiscard]] bool drawn_each_step() const { return style_.trails || recording_.has_value(); }
   void update_title();
   void save_png();
   void toggle_recording();
   void stop_recording();
-  void finish();
   [[nodiscard]] bool at_frame_limit() const {
     return frame_limit_ && simulation_.frame() >= *frame_limit_;
   }
@@ -151,99 +121,56 @@ class WindowApp {
   const PreparedInput& input_;
   std::ostream& out_;
   std::ostream& err_;
+  const InterruptGuard& interrupt_;
   Simulation simulation_;
   RenderStyle style_;
   CanvasSize size_;
-  Canvas canvas_;
   double speed_;
-  FixedStep pacer_;
   bool scripted_;
   std::optional<std::int64_t> frame_limit_;
-  std::optional<double> exit_after_;
 
-  std::unique_ptr<SdlVideo> video_;
-  std::unique_ptr<SDL_Window, DestroyWindow> window_;
-  std::unique_ptr<SDL_Renderer, DestroyRenderer> renderer_;
-  std::unique_ptr<SDL_Texture, DestroyTexture> texture_;
-  bool vsync_ = false;
-  int refresh_rate_ = 60;
-
-  bool running_ = true;
   bool paused_ = false;
-  bool canvas_current_ = false;   // the canvas shows the simulation's state
-  bool texture_current_ = false;  // the texture shows the canvas
-  // The mouse, in window pixels; a press is held for the next step even if
-  // the button is released before it (a quick click still resets 2.5).
-  double mouse_x_ = 0.0;
-  double mouse_y_ = 0.0;
-  bool button_down_ = false;
+  double step_credit_ = 0.0;  // steps due in the next frames (speed above 1)
+  // A press is held for the next step even if the button is released before
+  // it (a quick click still resets 2.5).
   bool pending_press_ = false;
   double press_x_ = 0.0;
   double press_y_ = 0.0;
 
   std::optional<GifWriter> recording_;
-  std::string title_;
 };
 
-void WindowApp::open() {
-  if (!env_set("SDL_VIDEODRIVER") && !env_set("DISPLAY") && !env_set("WAYLAND_DISPLAY")) {
-    throw InputError("no display: neither DISPLAY nor WAYLAND_DISPLAY is set");
-  }
-  // Unless asked for one, only the drivers that show a window (no fallback to
-  // offscreen or dummy; no Wayland probe, and its noise, without WAYLAND_DISPLAY).
-  const bool driver_requested = env_set("SDL_VIDEODRIVER");
-  if (!driver_requested) {
-    SDL_SetHint(SDL_HINT_VIDEODRIVER, env_set("WAYLAND_DISPLAY") ? "wayland,x11" : "x11");
-  }
-  SDL_SetHint(SDL_HINT_MOUSE_FOCUS_CLICKTHROUGH, "1");
-  SDL_SetHint(SDL_HINT_VIDEO_X11_NET_WM_BYPASS_COMPOSITOR, "0");
-  if (SDL_Init(SDL_INIT_VIDEO) != 0) {
-    const std::string reason = sdl_error();
-    SDL_Quit();
-    throw InputError("no display: " + reason);
-  }
-  video_ = std::make_unique<SdlVideo>();
-  // With DISPLAY set but no server behind it, SDL falls back to a driver that
-  // shows nothing (offscreen, dummy): a window nobody sees, running until
-  // killed. Those are only for who asks for them by SDL_VIDEODRIVER.
-  const char* driver = SDL_GetCurrentVideoDriver();
-  const std::string driver_name = driver != nullptr ? driver : "";
-  if (!driver_requested && driver_name != "x11" && driver_name != "wayland") {
-    const char* display = std::getenv("DISPLAY");
-    throw InputError("no display: cannot connect to DISPLAY '" +
-                     detail::printable(display != nullptr ? display : "") +
-                     "' (SDL found only its '" + driver_name + "' driver)");
-  }
-  const int width = canvas_.pixel_width();
-  const int height = canvas_.pixel_height();
-  window_.reset(SDL_CreateWindow("calder", SDL_WINDOWPOS_CENTERED, SDL_WINDOWPOS_CENTERED, width,
-                                 height, SDL_WINDOW_SHOWN));
-  if (!window_) throw InputError("no display: cannot open a window: " + sdl_error());
-  renderer_.reset(
-      SDL_CreateRenderer(window_.get(), -1, SDL_RENDERER_ACCELERATED | SDL_RENDERER_PRESENTVSYNC));
-  if (!renderer_) renderer_.reset(SDL_CreateRenderer(window_.get(), -1, SDL_RENDERER_SOFTWARE));
-  if (!renderer_) throw RunError("cannot create an SDL renderer: " + sdl_error());
-  SDL_RendererInfo info{};
-  if (SDL_GetRendererInfo(renderer_.get(), &info) == 0) {
-    vsync_ = (info.flags & SDL_RENDERER_PRESENTVSYNC) != 0;
-  }
-  SDL_DisplayMode mode{};
-  if (SDL_GetWindowDisplayMode(window_.get(), &mode) == 0 && mode.refresh_rate > 0) {
-    refresh_rate_ = mode.refresh_rate;
-  }
-  texture_.reset(SDL_CreateTexture(renderer_.get(), SDL_PIXELFORMAT_ARGB8888,
-                                   SDL_TEXTUREACCESS_STREAMING, width, height));
-  if (!texture_) throw RunError("cannot create an SDL texture: " + sdl_error());
-  SDL_SetTextureBlendMode(texture_.get(), SDL_BLENDMODE_NONE);
-  update_title();
+void SceneSketch::setup() {
+  update_title();  // the window opens with it
+  apply_speed();
+  create_canvas(size_.width, size_.height);
   if (!options_.quiet) {
     err_ << "calder window " << detail::printable(simulation_.scene().name, 200) << ": "
          << window_help() << '\n';
     err_.flush();
   }
+  draw_scene();
+  if (at_frame_limit()) exit_sketch();
 }
 
-void WindowApp::update_title() {
+void SceneSketch::draw() {
+  interrupt_.check();  // the recording's temporary goes with the destructors
+  // Above speed 1 a frame takes several steps (their credit carries over for
+  // speeds like 1.5) and is drawn once; below it the frame rate is lower.
+  step_credit_ += std::max(speed_, 1.0);
+  bool stepped = false;
+  while (step_credit_ >= 1.0 && !at_frame_limit()) {
+    step_credit_ -= 1.0;
+    step_once();
+    stepped = true;
+  }
+  if (stepped && !drawn_each_step()) draw_scene();
+  if (at_frame_limit()) exit_sketch();
+}
+
+void SceneSketch::apply_speed() { frame_rate(kStepsPerSecond * std::min(speed_, 1.0)); }
+
+void SceneSketch::update_title() {
   std::string title = "calder: " + detail::printable(simulation_.scene().name, 200);
   std::string state;
   if (paused_) state += "paused at frame " + std::to_string(simulation_.frame());
@@ -258,162 +185,81 @@ void WindowApp::update_title() {
   if (!state.empty()) title += " [" + state + "]";
   title += " - ";
   title += window_help();
-  if (title != title_) {
-    SDL_SetWindowTitle(window_.get(), title.c_str());
-    title_ = title;
-  }
+  window_title(title);
 }
 
-void WindowApp::run(const InterruptGuard& interrupt) {
-  open();
-  draw();
-  const double frequency = static_cast<double>(SDL_GetPerformanceFrequency());
-  const Uint64 start = SDL_GetPerformanceCounter();
-  Uint64 last = start;
-  if (at_frame_limit()) running_ = false;
-  while (running_) {
-    interrupt.check();  // the recording's temporary goes with the destructors
-    SDL_Event event;
-    while (SDL_PollEvent(&event) != 0) handle(event);
-    const Uint64 now = SDL_GetPerformanceCounter();
-    const double elapsed = std::min(static_cast<double>(now - last) / frequency, 0.25);
-    last = now;
-    if (exit_after_ && static_cast<double>(now - start) / frequency >= *exit_after_) {
-      running_ = false;
+void SceneSketch::mouse_pressed() {
+  press_x_ = mouse_x();
+  press_y_ = mouse_y();
+  pending_press_ = true;
+}
+
+void SceneSketch::key_pressed() {
+  std::string k = key();
+  if (k.size() == 1 && k[0] >= 'A' && k[0] <= 'Z') k[0] = static_cast<char>(k[0] - 'A' + 'a');
+  const bool repeat = key_repeated();
+  if (k == "q" || k == "Escape") {
+    exit_sketch();
+  } else if (k == " ") {
+    if (repeat) return;
+    paused_ = !paused_;
+    if (paused_) {
+      no_loop();
+    } else {
+      loop();
     }
-    if (running_ && !paused_) {
-      pacer_.advance(elapsed, [this] {
-        if (!at_frame_limit()) step_once();
-      });
+    update_title();
+  } else if (k == ".") {
+    if (paused_ && !at_frame_limit()) {
+      step_once();
+      if (!drawn_each_step()) draw_scene();
+      update_title();
     }
-    if (at_frame_limit()) running_ = false;
-    present();
-    const bool hidden =
-        (SDL_GetWindowFlags(window_.get()) & (SDL_WINDOW_MINIMIZED | SDL_WINDOW_HIDDEN)) != 0;
-    if (!vsync_ || hidden) {
-      // No vsync (the software renderer), or nothing shown that would wait
-      // for it: wait out the rest of a display frame.
-      const double spent = static_cast<double>(SDL_GetPerformanceCounter() - now) / frequency;
-      const double wait = 1.0 / refresh_rate_ - spent;
-      if (wait > 0.0) SDL_Delay(static_cast<Uint32>(wait * 1000.0));
+  } else if (k == "r") {
+    if (repeat) return;
+    simulation_ = start_simulation(input_);
+    canvas().clear();
+    pending_press_ = false;
+    step_credit_ = 0.0;
+    draw_scene();
+    update_title();
+  } else if (k == "f") {
+    if (repeat) return;
+    style_.show_forces = !style_.show_forces;
+    draw_scene();
+  } else if (k == "t") {
+    if (repeat) return;
+    style_.trails = !style_.trails;
+    draw_scene();
+  } else if (k == "s") {
+    if (!repeat) save_png();
+  } else if (k == "g") {
+    if (!repeat) toggle_recording();
+  } else if (k == "k") {  // keep: a snapshot to go on from (calder window FILE, calder run FILE)
+    if (repeat) return;
+    try {
+      note("saved " + save_window_snapshot(simulation_, file_stem()));
+    } catch (const Error& e) {
+      warn(e.what());
     }
-  }
-  finish();
-}
-
-void WindowApp::handle(const SDL_Event& event) {
-  switch (event.type) {
-    case SDL_QUIT:
-      running_ = false;
-      break;
-    case SDL_KEYDOWN:
-      key(event.key);
-      break;
-    case SDL_MOUSEMOTION:
-      mouse_x_ = event.motion.x;
-      mouse_y_ = event.motion.y;
-      break;
-    case SDL_MOUSEBUTTONDOWN:
-      if (event.button.button == SDL_BUTTON_LEFT) {
-        mouse_x_ = press_x_ = event.button.x;
-        mouse_y_ = press_y_ = event.button.y;
-        button_down_ = true;
-        pending_press_ = true;
-      }
-      break;
-    case SDL_MOUSEBUTTONUP:
-      if (event.button.button == SDL_BUTTON_LEFT) {
-        mouse_x_ = event.button.x;
-        mouse_y_ = event.button.y;
-        button_down_ = false;
-      }
-      break;
-    case SDL_WINDOWEVENT:
-      if (event.window.event == SDL_WINDOWEVENT_EXPOSED) texture_current_ = false;
-      break;
-    default:
-      break;
+  } else if (k == "+" || k == "=") {
+    speed_ = std::min(speed_ * 2.0, max_speed);
+    apply_speed();
+    update_title();
+  } else if (k == "-") {
+    speed_ = std::max(speed_ / 2.0, min_speed);
+    apply_speed();
+    update_title();
   }
 }
 
-void WindowApp::key(const SDL_KeyboardEvent& key) {
-  const SDL_Keycode code = key.keysym.sym;
-  const bool repeat = key.repeat != 0;
-  switch (code) {
-    case SDLK_q:
-    case SDLK_ESCAPE:
-      running_ = false;
-      break;
-    case SDLK_SPACE:
-      if (repeat) break;
-      paused_ = !paused_;
-      pacer_.reset();
-      update_title();
-      break;
-    case SDLK_PERIOD:
-    case SDLK_KP_PERIOD:
-      if (paused_ && !at_frame_limit()) {
-        step_once();
-        update_title();
-      }
-      break;
-    case SDLK_r:
-      if (repeat) break;
-      simulation_ = start_simulation(input_);
-      canvas_.clear();
-      canvas_current_ = false;
-      pending_press_ = false;
-      pacer_.reset();
-      update_title();
-      break;
-    case SDLK_f:
-      if (repeat) break;
-      style_.show_forces = !style_.show_forces;
-      canvas_current_ = false;
-      break;
-    case SDLK_t:
-      if (repeat) break;
-      style_.trails = !style_.trails;
-      canvas_current_ = false;
-      break;
-    case SDLK_s:
-      if (!repeat) save_png();
-      break;
-    case SDLK_g:
-      if (!repeat) toggle_recording();
-      break;
-    case SDLK_k:  // keep: a snapshot to go on from (calder window FILE, calder run FILE)
-      if (repeat) break;
-      try {
-        note("saved " + save_window_snapshot(simulation_, file_stem()));
-      } catch (const Error& e) {
-        warn(e.what());
-      }
-      break;
-    case SDLK_PLUS:
-    case SDLK_EQUALS:
-    case SDLK_KP_PLUS:
-      speed_ = std::min(speed_ * 2.0, max_speed);
-      pacer_.set_steps_per_second(kStepsPerSecond * speed_);
-      update_title();
-      break;
-    case SDLK_MINUS:
-    case SDLK_KP_MINUS:
-      speed_ = std::max(speed_ / 2.0, min_speed);
-      pacer_.set_steps_per_second(kStepsPerSecond * speed_);
-      update_title();
-      break;
-    default:
-      break;
-  }
-}
-
-void WindowApp::step_once() {
+void SceneSketch::step_once() {
   const Vec2 origin = simulation_.scene().origin;
   InputState input;
-  input.mouse_pressed = button_down_ || pending_press_;
-  input.mouse = pending_press_ ? window_to_physics(press_x_, press_y_, size_.scale, origin)
-                               : window_to_physics(mouse_x_, mouse_y_, size_.scale, origin);
+  input.mouse_pressed = mouse_is_pressed() || pending_press_;
+  // The mouse is in canvas pixels already (the runner divides by the scale).
+  input.mouse = pending_press_ ? window_to_physics(press_x_, press_y_, 1.0, origin)
+                               : window_to_physics(mouse_x(), mouse_y(), 1.0, origin);
   try {
     if (scripted_) {
       simulation_.step();
@@ -424,12 +270,10 @@ void WindowApp::step_once() {
     throw_run_failure(e, input_.source, simulation_.frame() + 1);
   }
   pending_press_ = false;
-  canvas_current_ = false;
-  // Trails and recordings need every step drawn; otherwise once a display frame.
-  if (style_.trails || recording_) draw();
+  if (drawn_each_step()) draw_scene();
   if (recording_ && simulation_.frame() % kGifEvery == 0) {
     try {
-      recording_->add_frame(canvas_);
+      recording_->add_frame(canvas());
     } catch (const Error& e) {
       recording_.reset();
       warn(std::string("GIF recording stopped: ") + e.what());
@@ -442,50 +286,35 @@ void WindowApp::step_once() {
   }
 }
 
-void WindowApp::draw() {
+void SceneSketch::draw_scene() {
   try {
-    canvas_.draw(simulation_.world(), simulation_.scene(), style_, simulation_.frame());
+    canvas().draw(simulation_.world(), simulation_.scene(), style_, simulation_.frame());
   } catch (const Error& e) {
     throw_run_failure(e, input_.source, simulation_.frame());
   }
-  canvas_current_ = true;
-  texture_current_ = false;
 }
 
-void WindowApp::present() {
-  if (!canvas_current_) draw();
-  if (!texture_current_) {
-    SDL_UpdateTexture(texture_.get(), nullptr, canvas_.argb32_data(), canvas_.stride());
-    texture_current_ = true;
-  }
-  SDL_RenderClear(renderer_.get());
-  SDL_RenderCopy(renderer_.get(), texture_.get(), nullptr, nullptr);
-  SDL_RenderPresent(renderer_.get());
-}
-
-void WindowApp::save_png() {
-  if (!canvas_current_) draw();
+void SceneSketch::save_png() {
   char frame[24];
   std::snprintf(frame, sizeof frame, "%06lld", static_cast<long long>(simulation_.frame()));
   const std::string path = file_stem() + "-" + frame + ".png";
   try {
-    canvas_.write_png(path);
+    canvas().write_png(path);
     note("saved " + path);
   } catch (const Error& e) {
     warn(e.what());
   }
 }
 
-void WindowApp::toggle_recording() {
+void SceneSketch::toggle_recording() {
   if (recording_) {
     stop_recording();
     return;
   }
   const std::string path = file_stem() + "-" + timestamp() + ".gif";
   try {
-    recording_.emplace(path, canvas_.pixel_width(), canvas_.pixel_height(), kGifFps);
-    if (!canvas_current_) draw();
-    recording_->add_frame(canvas_);
+    recording_.emplace(path, canvas().pixel_width(), canvas().pixel_height(), kGifFps);
+    recording_->add_frame(canvas());
     note("recording " + path + " (g stops)");
   } catch (const Error& e) {
     recording_.reset();
@@ -494,7 +323,7 @@ void WindowApp::toggle_recording() {
   update_title();
 }
 
-void WindowApp::stop_recording() {
+void SceneSketch::stop_recording() {
   if (!recording_) return;
   try {
     recording_->finish();
@@ -507,12 +336,11 @@ void WindowApp::stop_recording() {
   update_title();
 }
 
-void WindowApp::finish() {
+void SceneSketch::on_exit() {
   stop_recording();
-  if (!canvas_current_) draw();
   if (options_.screenshot) {
     try {
-      canvas_.write_png(*options_.screenshot);
+      canvas().write_png(*options_.screenshot);
     } catch (const Error& e) {
       throw RunError(std::string("--screenshot: ") + e.what());
     }
@@ -609,8 +437,17 @@ void window_command(const WindowOptions& options, std::ostream& out, std::ostrea
   // Installed before SDL starts, SDL leaves SIGINT and SIGTERM to it: every
   // terminating signal ends the window with exit 128 + signal, cleaned up.
   const InterruptGuard interrupt;
-  WindowApp app(options, input, out, err);
-  app.run(interrupt);
+  SceneSketch sketch(options, input, out, err, interrupt);
+  SketchOptions run;
+  run.mode = SketchOptions::Mode::window;
+  run.scale = sketch.size().scale;
+  run.exit_after_seconds = options.exit_after_seconds
+                               ? std::optional(parse_seconds(*options.exit_after_seconds))
+                               : std::nullopt;
+  run.quiet = true;
+  run.program = "calder";
+  run.poll = [&interrupt] { interrupt.check(); };
+  run_sketch(sketch, run);
 }
 
 }  // namespace calder::app

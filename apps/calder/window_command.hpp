@@ -5,10 +5,11 @@
 //   calder window example-2.7            drag the attractor
 //   calder window exercise-2.16 --scale 1.5 --speed 2
 //
-// The display draws at its own rate (vsync); physics advances in fixed steps,
-// 60 a second times --speed (calder::FixedStep), each one
+// The command is a sketch (calder/sketch.hpp) on calder::sketch's window
+// loop: the display shows at its own rate (vsync); physics advances in fixed
+// steps, 60 a second times --speed (the runner's calder::FixedStep), each one
 // Simulation::step(InputState{pressed, mouse}) with the live mouse, in the
-// scene's physics coordinates (window pixels / scale - scene origin). With
+// scene's physics coordinates (canvas pixels - scene origin). With
 // --mouse-pressed or --mouse the scene's scripted input is replayed instead.
 //
 // Keys: space pause, . one step (paused), r reset, f forces, t trails,

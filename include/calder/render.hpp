@@ -151,6 +151,27 @@ enum class BookLook {
 // the scene's, given to Canvas::draw.
 RenderStyle book_style(const Scene& scene, BookLook look = BookLook::sketch);
 
+// How a shape is painted (p5's fill, stroke and strokeWeight): a fill of
+// alpha 0 is noFill(), a stroke of alpha 0 or weight 0 is noStroke().
+struct ShapeStyle {
+  Color fill = Color::gray(255.0);
+  Color stroke = Color::gray(0.0);
+  double stroke_weight = 1.0;
+};
+
+// An affine map of canvas pixels (p5's translate, rotate and scale, composed):
+// (x, y) goes to (xx x + xy y + x0, yx x + yy y + y0).
+struct Transform {
+  double xx = 1.0, yx = 0.0, xy = 0.0, yy = 1.0, x0 = 0.0, y0 = 0.0;
+
+  // This map after a translation, a rotation (radians, clockwise on screen
+  // as in p5) or a scaling in the mapped coordinates.
+  [[nodiscard]] Transform translated(double dx, double dy) const;
+  [[nodiscard]] Transform rotated(double angle) const;
+  [[nodiscard]] Transform scaled(double sx, double sy) const;
+  friend constexpr bool operator==(const Transform&, const Transform&) = default;
+};
+
 // An image of (width * scale) x (height * scale) pixels that frames are
 // drawn into; Cairo's ARGB32 underneath. Starts fully transparent. Movable
 // (a moved-from canvas may only be destroyed or assigned to), not copyable.
@@ -179,6 +200,33 @@ class Canvas {
   void draw(const World& world, const RenderStyle& style, std::int64_t frame, Vec2 origin = {});
   // Back to fully transparent; the next draw starts without trails.
   void clear();
+
+  // --- shapes: p5's drawing vocabulary (calder::sketch draws with these) ---
+  // Coordinates are canvas pixels mapped by the transform (set_transform),
+  // then by the scale. A body that draw() paints and a circle() with the
+  // same centre, diameter and style are the same Cairo path and stroke, so
+  // the same pixels. Strokes have round caps (p5's strokeCap(ROUND)); rect
+  // and triangle corners are mitred (p5's strokeJoin(MITER)). Throws
+  // calder::Error for a non-finite coordinate or size (drawing nothing).
+  //
+  // p5's background(c): paints the whole canvas, ignoring the transform; an
+  // alpha below 1 is painted over what is there (background(255, 50)).
+  void background(const Color& color);
+  void set_transform(const Transform& transform);
+  [[nodiscard]] const Transform& transform() const;
+  // circle(x, y, d) and ellipse(x, y, w, h): centred on (x, y).
+  void circle(double x, double y, double diameter, const ShapeStyle& style);
+  void ellipse(double x, double y, double w, double h, const ShapeStyle& style);
+  // rect(x, y, w, h): (x, y) its top-left corner (p5's rectMode(CORNER)).
+  void rect(double x, double y, double w, double h, const ShapeStyle& style);
+  void triangle(double x1, double y1, double x2, double y2, double x3, double y3,
+                const ShapeStyle& style);
+  // line and point: the stroke only (point: a dot as wide as the stroke).
+  void line(double x1, double y1, double x2, double y2, const ShapeStyle& style);
+  void point(double x, double y, const ShapeStyle& style);
+  // text(s, x, y): the baseline's left end at (x, y), in the fill colour,
+  // sans-serif, `size` canvas pixels high (p5's textSize, 12 by default).
+  void text(const std::string& words, double x, double y, double size, const ShapeStyle& style);
 
   [[nodiscard]] int width() const;   // canvas pixels
   [[nodiscard]] int height() const;  // canvas pixels

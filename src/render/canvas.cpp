@@ -11,6 +11,7 @@
 #include <cstdio>
 #include <cstring>
 #include <deque>
+#include <initializer_list>
 #include <span>
 #include <string>
 #include <variant>
@@ -75,8 +76,9 @@ bool huge_circle_path(cairo_t* cr, double x, double y, double radius, double mar
 
 // p5's circle(x, y, diameter) (or, with square, rectMode(CENTER) square of
 // side 2 * radius) with the current fill and stroke.
-void circle(cairo_t* cr, double x, double y, double radius, const Color& fill, const Color& stroke,
-            double stroke_weight, const View& view, bool square = false) {
+void paint_circle(cairo_t* cr, double x, double y, double radius, const Color& fill,
+                  const Color& stroke, double stroke_weight, const View& view,
+                  bool square = false) {
   cairo_new_path(cr);
   const double diagonal = std::hypot(view.right - view.left, view.bottom - view.top);
   const double margin = stroke_weight + 1.0;
@@ -263,7 +265,8 @@ struct Canvas::Impl {
   double scale = 1.0;
   int pixel_width = 0;
   int pixel_height = 0;
-  bool fresh = true;  // nothing drawn since construction or clear()
+  bool fresh = true;    // nothing drawn since construction or clear()
+  Transform transform;  // the shapes' (set_transform)
   // Per-field forces, field-major: force_x[k * n + i].
   std::vector<double> force_x, force_y, ax, ay;
 
@@ -280,6 +283,11 @@ struct Canvas::Impl {
                    double right, double bottom);
   void draw_vectors(const World& world, const RenderStyle& style);
   void draw_text(const World& world, const RenderStyle& style, std::int64_t frame);
+  // Sets up Cairo for one shape call (scale, then the transform; round caps,
+  // the given join) and returns the canvas's extent in the shape's
+  // coordinates; end_shape() puts Cairo back.
+  View begin_shape(cairo_line_join_t join);
+  void end_shape();
 };
 
 Canvas::Canvas(int width, int height, double scale) : impl_(std::make_unique<Impl>()) {
@@ -437,8 +445,8 @@ void Canvas::Impl::draw_fields(const World& world, const Scene* scene, const Ren
       if (p.x + reach < left || p.x - reach > right || p.y + reach < top || p.y - reach > bottom) {
         continue;
       }
-      circle(cr, p.x, p.y, radius, style.attractor_fill, style.attractor_stroke,
-             style.attractor_stroke_weight, {left, top, right, bottom});
+      paint_circle(cr, p.x, p.y, radius, style.attractor_fill, style.attractor_stroke,
+                   style.attractor_stroke_weight, {left, top, right, bottom});
     } else if (const auto* mutual = std::get_if<MutualAttraction>(&field)) {
       if (!mutual->enabled || !mutual->central || !style.show_central_body) continue;
       const Vec2 p = mutual->central->position;
@@ -447,8 +455,8 @@ void Canvas::Impl::draw_fields(const World& world, const Scene* scene, const Ren
       if (p.x + reach < left || p.x - reach > right || p.y + reach < top || p.y - reach > bottom) {
         continue;
       }
-      circle(cr, p.x, p.y, radius, style.body_fill, style.body_stroke, style.body_stroke_weight,
-             {left, top, right, bottom});
+      paint_circle(cr, p.x, p.y, radius, style.body_fill, style.body_stroke,
+                   style.body_stroke_weight, {left, top, right, bottom});
     }
   }
 }
@@ -463,8 +471,8 @@ void Canvas::Impl::draw_bodies(const World& world, const RenderStyle& style, dou
     const double r = bodies.radius[i];
     const double reach = r + stroke;
     if (x + reach < left || x - reach > right || y + reach < top || y - reach > bottom) continue;
-    circle(cr, x, y, r, style.body_fill, style.body_stroke, stroke, {left, top, right, bottom},
-           style.squares);
+    paint_circle(cr, x, y, r, style.body_fill, style.body_stroke, stroke,
+                 {left, top, right, bottom}, style.squares);
   }
 }
 
@@ -545,6 +553,189 @@ void Canvas::Impl::draw_text(const World& world, const RenderStyle& style, std::
                              std::to_string(world.body_count()) + "   energy " + energy;
     text_box(cr, 6.0, height - 6.0, true, {{line, style.text_color}}, false, style.text_color);
   }
+}
+
+// --- shapes --------------------------------------------------------------------
+
+namespace {
+
+void require_finite_all(const char* who, std::initializer_list<double> values) {
+  for (const double v : values) {
+    if (!std::isfinite(v)) {
+      throw Error(std::string("Canvas::") + who + ": coordinates and sizes must be finite (got " +
+                  detail::format_number(v) + ")");
+    }
+  }
+}
+
+// Fills and strokes the current path with a shape style, then clears it.
+void paint_path(cairo_t* cr, const ShapeStyle& style) {
+  if (visible(style.fill)) {
+    set_color(cr, style.fill);
+    cairo_fill_preserve(cr);
+  }
+  if (visible(style.stroke) && style.stroke_weight > 0.0) {
+    set_color(cr, style.stroke);
+    cairo_set_line_width(cr, style.stroke_weight);
+    cairo_stroke_preserve(cr);
+  }
+  cairo_new_path(cr);
+}
+
+}  // namespace
+
+Transform Transform::translated(double dx, double dy) const {
+  Transform t = *this;
+  t.x0 += xx * dx + xy * dy;
+  t.y0 += yx * dx + yy * dy;
+  return t;
+}
+
+Transform Transform::rotated(double angle) const {
+  const double c = std::cos(angle);
+  const double s = std::sin(angle);
+  Transform t = *this;
+  t.xx = xx * c + xy * s;
+  t.yx = yx * c + yy * s;
+  t.xy = xy * c - xx * s;
+  t.yy = yy * c - yx * s;
+  return t;
+}
+
+Transform Transform::scaled(double sx, double sy) const {
+  Transform t = *this;
+  t.xx *= sx;
+  t.yx *= sx;
+  t.xy *= sy;
+  t.yy *= sy;
+  return t;
+}
+
+View Canvas::Impl::begin_shape(cairo_line_join_t join) {
+  cairo_save(cr);
+  cairo_identity_matrix(cr);
+  cairo_set_operator(cr, CAIRO_OPERATOR_OVER);
+  cairo_set_line_join(cr, join);
+  cairo_set_line_cap(cr, CAIRO_LINE_CAP_ROUND);
+  cairo_scale(cr, scale, scale);
+  const Transform& t = transform;
+  if (t != Transform{}) {
+    cairo_matrix_t m;
+    cairo_matrix_init(&m, t.xx, t.yx, t.xy, t.yy, t.x0, t.y0);
+    cairo_transform(cr, &m);
+  }
+  View view{};
+  cairo_clip_extents(cr, &view.left, &view.top, &view.right, &view.bottom);
+  fresh = false;
+  return view;
+}
+
+void Canvas::Impl::end_shape() {
+  cairo_restore(cr);
+  cairo_surface_flush(surface);
+}
+
+void Canvas::background(const Color& color) {
+  Impl& d = *impl_;
+  cairo_save(d.cr);
+  cairo_identity_matrix(d.cr);
+  // Opaque: replaces what is there, as draw() does; translucent: over it.
+  cairo_set_operator(d.cr, color.a >= 1.0 ? CAIRO_OPERATOR_SOURCE : CAIRO_OPERATOR_OVER);
+  set_color(d.cr, color);
+  cairo_paint(d.cr);
+  cairo_restore(d.cr);
+  cairo_surface_flush(d.surface);
+  d.fresh = false;
+}
+
+void Canvas::set_transform(const Transform& t) {
+  require_finite_all("set_transform", {t.xx, t.yx, t.xy, t.yy, t.x0, t.y0});
+  impl_->transform = t;
+}
+
+const Transform& Canvas::transform() const { return impl_->transform; }
+
+void Canvas::circle(double x, double y, double diameter, const ShapeStyle& style) {
+  require_finite_all("circle", {x, y, diameter, style.stroke_weight});
+  const View view = impl_->begin_shape(CAIRO_LINE_JOIN_ROUND);
+  // The bodies' own path and paint (draw_bodies), so the same pixels.
+  paint_circle(impl_->cr, x, y, std::abs(diameter) / 2.0, style.fill, style.stroke,
+               style.stroke_weight, view);
+  impl_->end_shape();
+}
+
+void Canvas::ellipse(double x, double y, double w, double h, const ShapeStyle& style) {
+  require_finite_all("ellipse", {x, y, w, h, style.stroke_weight});
+  if (std::abs(w) == std::abs(h)) {
+    circle(x, y, w, style);
+    return;
+  }
+  cairo_t* cr = impl_->cr;
+  impl_->begin_shape(CAIRO_LINE_JOIN_ROUND);
+  if (w != 0.0 && h != 0.0) {
+    cairo_save(cr);
+    cairo_translate(cr, x, y);
+    cairo_scale(cr, std::abs(w) / 2.0, std::abs(h) / 2.0);
+    cairo_arc(cr, 0.0, 0.0, 1.0, 0.0, 2.0 * kPi);
+    cairo_restore(cr);  // the path stays; the stroke is not scaled
+    paint_path(cr, style);
+  }
+  impl_->end_shape();
+}
+
+void Canvas::rect(double x, double y, double w, double h, const ShapeStyle& style) {
+  require_finite_all("rect", {x, y, w, h, style.stroke_weight});
+  cairo_t* cr = impl_->cr;
+  impl_->begin_shape(CAIRO_LINE_JOIN_MITER);
+  cairo_rectangle(cr, x, y, w, h);
+  paint_path(cr, style);
+  impl_->end_shape();
+}
+
+void Canvas::triangle(double x1, double y1, double x2, double y2, double x3, double y3,
+                      const ShapeStyle& style) {
+  require_finite_all("triangle", {x1, y1, x2, y2, x3, y3, style.stroke_weight});
+  cairo_t* cr = impl_->cr;
+  impl_->begin_shape(CAIRO_LINE_JOIN_MITER);
+  cairo_move_to(cr, x1, y1);
+  cairo_line_to(cr, x2, y2);
+  cairo_line_to(cr, x3, y3);
+  cairo_close_path(cr);
+  paint_path(cr, style);
+  impl_->end_shape();
+}
+
+void Canvas::line(double x1, double y1, double x2, double y2, const ShapeStyle& style) {
+  require_finite_all("line", {x1, y1, x2, y2, style.stroke_weight});
+  cairo_t* cr = impl_->cr;
+  impl_->begin_shape(CAIRO_LINE_JOIN_ROUND);
+  cairo_move_to(cr, x1, y1);
+  cairo_line_to(cr, x2, y2);
+  paint_path(cr, ShapeStyle{Color::none(), style.stroke, style.stroke_weight});
+  impl_->end_shape();
+}
+
+void Canvas::point(double x, double y, const ShapeStyle& style) {
+  require_finite_all("point", {x, y, style.stroke_weight});
+  const View view = impl_->begin_shape(CAIRO_LINE_JOIN_ROUND);
+  // A radius-0 body's dot (draw_bodies), so the same pixels.
+  paint_circle(impl_->cr, x, y, 0.0, Color::none(), style.stroke, style.stroke_weight, view);
+  impl_->end_shape();
+}
+
+void Canvas::text(const std::string& words, double x, double y, double size,
+                  const ShapeStyle& style) {
+  require_finite_all("text", {x, y, size});
+  if (!visible(style.fill) || !(size > 0.0)) return;
+  cairo_t* cr = impl_->cr;
+  impl_->begin_shape(CAIRO_LINE_JOIN_ROUND);
+  cairo_select_font_face(cr, "sans-serif", CAIRO_FONT_SLANT_NORMAL, CAIRO_FONT_WEIGHT_NORMAL);
+  cairo_set_font_size(cr, size);
+  set_color(cr, style.fill);
+  cairo_move_to(cr, x, y);
+  cairo_show_text(cr, words.c_str());
+  cairo_new_path(cr);
+  impl_->end_shape();
 }
 
 std::vector<std::uint8_t> Canvas::rgba() const {

@@ -2,9 +2,9 @@
 # Runs an example and compares its stdout with a p5.js reference trajectory.
 #
 #   cmake -DEXAMPLE=<exe> -DTRAJECTORY_DIFF=<exe> -DREFERENCE=<csv> -DOUTPUT=<csv>
-#         [-DTOLERANCE=1e-9] -P run_and_compare.cmake
+#         [-DTOLERANCE=1e-9] [-DEXAMPLE_ARGS=a|b|...] -P run_and_compare.cmake
 #
-# The example runs with no arguments; its stdout goes to OUTPUT, its stderr
+# The example runs with EXAMPLE_ARGS ('|'-separated); its stdout goes to OUTPUT, its stderr
 # passes through. Fails (non-zero exit) when the example fails or when
 # trajectory_diff reports a mismatch or an unreadable file.
 cmake_minimum_required(VERSION 3.25)
@@ -30,8 +30,9 @@ set(stdin_args)
 if(UNIX)
   set(stdin_args INPUT_FILE /dev/null)
 endif()
+string(REPLACE "|" ";" example_args "${EXAMPLE_ARGS}")
 execute_process(
-  COMMAND "${EXAMPLE}" ${stdin_args}
+  COMMAND "${EXAMPLE}" ${example_args} ${stdin_args}
   OUTPUT_FILE "${OUTPUT}"
   RESULT_VARIABLE example_result)
 if(NOT example_result STREQUAL "0")
