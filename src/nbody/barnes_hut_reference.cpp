@@ -46,7 +46,7 @@ class ReferenceBuild {
     n.children = 0;
     if (leaf) {
       ++tree_.leaves;
-      std::sort(bodies_.begin() + begin, bodies_.begin() + end,
+      std::sort(bodies_.data() + begin, bodies_.data() + end,
                 [](const Keyed& a, const Keyed& b) { return a.index < b.index; });
       return;
     }
