@@ -56,27 +56,7 @@ System with(System s, const System& more) {
 
 // n bodies in 6 Plummer-like clumps (scale 1 to 5) spread over 100 x 100.
 System clusters(std::size_t n, std::uint64_t seed) {
-  std::mt19937_64 g(seed);
-  constexpr std::size_t kClumps = 6;
-  double cx[kClumps];
-  double cy[kClumps];
-  double a[kClumps];
-  for (std::size_t c = 0; c < kClumps; ++c) {
-    cx[c] = 100.0 * uniform(g) - 50.0;
-    cy[c] = 100.0 * uniform(g) - 50.0;
-    a[c] = 1.0 + 4.0 * uniform(g);
-  }
-  System s;
-  for (std::size_t i = 0; i < n; ++i) {
-    const std::size_t c = i % kClumps;
-    const double q = std::min(uniform(g), 0.999);
-    const double radius = a[c] * std::sqrt(q / (1.0 - q));
-    const double angle = 6.283185307179586 * uniform(g);
-    s.x.push_back(cx[c] + radius * std::cos(angle));
-    s.y.push_back(cy[c] + radius * std::sin(angle));
-    s.m.push_back(0.5 + uniform(g));
-  }
-  return s;
+  return calder::test::clusters(n, seed, {.clumps = 6, .half_span = 50.0, .max_q = 0.999});
 }
 
 struct Field {
