@@ -3,7 +3,9 @@
 // initial state and order of operations (shared/spec/chapter2.md).
 #include <functional>
 #include <string>
+#include <string_view>
 #include <utility>
+#include <vector>
 
 #include "calder/error.hpp"
 #include "calder/scene.hpp"
@@ -517,12 +519,34 @@ Scene builtin_scene(const std::string& name) {
   for (const Entry& e : kScenes) {
     if (name == e.name) return e.make();
   }
+  throw InputError(unknown_scene_message(name));
+}
+
+bool is_builtin_scene(std::string_view name) {
+  for (const Entry& e : kScenes) {
+    if (name == e.name) return true;
+  }
+  return false;
+}
+
+std::string unknown_scene_message(std::string_view name,
+                                  const std::vector<std::string_view>& also) {
   std::string names;
+  std::vector<std::string_view> candidates;
   for (const Entry& e : kScenes) {
     names += names.empty() ? "" : ", ";
     names += e.name;
+    candidates.emplace_back(e.name);
   }
-  throw Error("no built-in scene '" + name + "' (built-in scenes: " + names + ")");
+  candidates.insert(candidates.end(), also.begin(), also.end());
+  std::string message = "unknown scene '" + detail::printable(name) + "'";
+  // A typo of a candidate, or a file named like it ("three" for three.toml).
+  if (const auto near = detail::closest(name, candidates)) {
+    message += " (did you mean '" + std::string(*near) + "'?)";
+  } else if (const auto file = detail::closest(std::string(name) + ".toml", candidates)) {
+    message += " (did you mean '" + std::string(*file) + "'?)";
+  }
+  return message + ": not a built-in scene (" + names + ")";
 }
 
 }  // namespace calder

@@ -10,6 +10,7 @@
 #include <variant>
 #include <vector>
 
+#include "calder/error.hpp"
 #include "calder/world.hpp"
 
 namespace calder {
@@ -204,6 +205,18 @@ std::string state_hash_text(const World& world) {
   std::array<char, 17> text{};
   std::snprintf(text.data(), text.size(), "%016" PRIx64, state_hash(world));
   return text.data();
+}
+
+DisplayedEnergy displayed_energy(const World& world, std::uint64_t max_pairs) {
+  DisplayedEnergy e;
+  e.kinetic = kinetic_energy(world);
+  try {
+    e.potential = bounded_potential_energy(world, max_pairs);
+    e.has_potential = true;
+  } catch (const Error& error) {
+    e.why_not = error.what();  // a field without a potential (wind, a custom law)
+  }
+  return e;
 }
 
 }  // namespace calder

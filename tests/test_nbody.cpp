@@ -2,7 +2,8 @@
 // Tests of calder::nbody (calder/nbody.hpp): the reference against the core's
 // attraction law, the direct kernels against the reference (float64 to
 // rounding, float32 to its documented bound), bit-identical results for any
-// thread count, Barnes-Hut's error against theta, and the edge cases (no
+// thread count, Barnes-Hut's error against theta, its tree's contract (the
+// fast build against the plain reference build), and the edge cases (no
 // bodies, one body, coincident bodies, bad input).
 #include <gtest/gtest.h>
 
@@ -20,8 +21,12 @@
 #include <thread>
 #include <vector>
 
-#include "../src/claims.hpp"               // the walk's shares of work, claimed in chunks
-#include "../src/nbody/build_kernels.hpp"  // the build's loops, per instruction set
+#include "../src/claims.hpp"                      // the walk's shares of work, claimed in chunks
+#include "../src/nbody/barnes_hut_builder.hpp"    // the fast build, for its contract
+#include "../src/nbody/barnes_hut_reference.hpp"  // the reference build
+#include "../src/nbody/barnes_hut_walker.hpp"     // the walk over either
+#include "../src/nbody/build_kernels.hpp"         // the build's loops, per instruction set
+#include "../src/nbody/common.hpp"                // the law's parameters
 #include "calder/error.hpp"
 #include "calder/fields.hpp"
 #include "calder/forces.hpp"
@@ -51,27 +56,7 @@ System with(System s, const System& more) {
 
 // n bodies in 6 Plummer-like clumps (scale 1 to 5) spread over 100 x 100.
 System clusters(std::size_t n, std::uint64_t seed) {
-  std::mt19937_64 g(seed);
-  constexpr std::size_t kClumps = 6;
-  double cx[kClumps];
-  double cy[kClumps];
-  double a[kClumps];
-  for (std::size_t c = 0; c < kClumps; ++c) {
-    cx[c] = 100.0 * uniform(g) - 50.0;
-    cy[c] = 100.0 * uniform(g) - 50.0;
-    a[c] = 1.0 + 4.0 * uniform(g);
-  }
-  System s;
-  for (std::size_t i = 0; i < n; ++i) {
-    const std::size_t c = i % kClumps;
-    const double q = std::min(uniform(g), 0.999);
-    const double radius = a[c] * std::sqrt(q / (1.0 - q));
-    const double angle = 6.283185307179586 * uniform(g);
-    s.x.push_back(cx[c] + radius * std::cos(angle));
-    s.y.push_back(cy[c] + radius * std::sin(angle));
-    s.m.push_back(0.5 + uniform(g));
-  }
-  return s;
+  return calder::test::clusters(n, seed, {.clumps = 6, .half_span = 50.0, .max_q = 0.999});
 }
 
 struct Field {
@@ -777,58 +762,49 @@ TEST(NbodyWork, BarnesHutRegionsAreSharedEvenlyAmongSixteenThreads) {
   }
 }
 
-// The build kernels (the variant this CPU runs) against the plain loops
-// their comments promise: the same bits.
+// The build kernels' leaf sums (the variant this CPU runs) against the
+// moments' definitions, summed plainly: equal to rounding.
 namespace {
 
-bool same_bits(double a, double b) {
-  std::uint64_t ua = 0;
-  std::uint64_t ub = 0;
-  std::memcpy(&ua, &a, sizeof a);
-  std::memcpy(&ub, &b, sizeof b);
-  return ua == ub;
-}
-
-// One leaf's sums as plain loops: four partial sums, the j-th over bodies
-// j, j + 4, ..., added as (0 + 1) + (2 + 3); each product from the mass
-// rightwards.
+// One leaf's sums by their definitions: mass, centre of mass, then
+// sum m dx^i dy^j about it (the order of bh::LeafSum).
 std::vector<double> plain_leaf_sums(const double* x, const double* y, const double* m,
                                     std::size_t n) {
-  const auto sum4 = [n](const auto& term) {
-    double part[4] = {0.0, 0.0, 0.0, 0.0};
-    for (std::size_t b = 0; b < n; ++b) part[b % 4] += term(b);
-    return (part[0] + part[1]) + (part[2] + part[3]);
-  };
-  const double mass = sum4([&](std::size_t b) { return m[b]; });
-  const double mx = sum4([&](std::size_t b) { return m[b] * x[b]; }) / mass;
-  const double my = sum4([&](std::size_t b) { return m[b] * y[b]; }) / mass;
+  double mass = 0.0;
+  double mx = 0.0;
+  double my = 0.0;
+  for (std::size_t b = 0; b < n; ++b) {
+    mass += m[b];
+    mx += m[b] * x[b];
+    my += m[b] * y[b];
+  }
+  mx /= mass;
+  my /= mass;
   std::vector<double> sums(nb::bh::kLeafSums, 0.0);
   sums[nb::bh::kLeafMass] = mass;
   sums[nb::bh::kLeafMx] = mx;
   sums[nb::bh::kLeafMy] = my;
-  // m dx^i dy^j, from the mass rightwards.
-  const auto moment = [&](int i, int j) {
-    return sum4([&](std::size_t b) {
-      double p = m[b];
-      for (int k = 0; k < i; ++k) p *= x[b] - mx;
-      for (int k = 0; k < j; ++k) p *= y[b] - my;
-      return p;
-    });
-  };
-  // From kLeafQxx on: xx xy yy, xxx xxy xyy yyy, xxxx xxxy xxyy xyyy yyyy.
-  int at = nb::bh::kLeafQxx;
+  int at = nb::bh::kLeafQxx;  // xx xy yy, xxx xxy xyy yyy, xxxx xxxy xxyy xyyy yyyy
   for (int order = 2; order <= 4; ++order) {
-    for (int j = 0; j <= order; ++j) sums[static_cast<std::size_t>(at++)] = moment(order - j, j);
+    for (int j = 0; j <= order; ++j) {
+      double sum = 0.0;
+      for (std::size_t b = 0; b < n; ++b) {
+        sum += m[b] * std::pow(x[b] - mx, order - j) * std::pow(y[b] - my, j);
+      }
+      sums[static_cast<std::size_t>(at++)] = sum;
+    }
   }
   return sums;
 }
 
 }  // namespace
 
-// 37 leaves of 1 to 70 bodies (every length modulo the kernel's four
-// lanes), one of coincident bodies, masses from 0.1 to 10; past the last
-// leaf, padding of NaNs, which the kernel may read but must not use.
-TEST(NbodyBuildKernels, LeafMomentsAreThePlainLoopsBitForBit) {
+// 37 leaves of 1 to 70 bodies (every length modulo a vector's lanes), one of
+// coincident bodies, masses from 0.1 to 10; past the last leaf, padding of
+// NaNs, which the kernel may read but must not use. Each sum within rounding
+// of its definition: relative to the size of its terms, sum m r^k (r: the
+// leaf's extent, 100 here), a few ulps per body.
+TEST(NbodyBuildKernels, LeafMomentsAreTheirDefinitions) {
   std::mt19937_64 rng(2718);
   std::uniform_real_distribution<double> u(-50.0, 50.0);
   std::uniform_real_distribution<double> mass(0.1, 10.0);
@@ -854,13 +830,22 @@ TEST(NbodyBuildKernels, LeafMomentsAreThePlainLoopsBitForBit) {
   nb::bh::build_kernels().leaf_moments(x.data(), y.data(), m.data(), begin.data(), end.data(),
                                        begin.size(), sums.data());
   for (std::size_t leaf = 0; leaf < begin.size(); ++leaf) {
+    const std::size_t n = end[leaf] - begin[leaf];
     const std::vector<double> want =
-        plain_leaf_sums(x.data() + begin[leaf], y.data() + begin[leaf], m.data() + begin[leaf],
-                        end[leaf] - begin[leaf]);
+        plain_leaf_sums(x.data() + begin[leaf], y.data() + begin[leaf], m.data() + begin[leaf], n);
+    double total = 0.0;
+    for (std::uint32_t b = begin[leaf]; b < end[leaf]; ++b) total += m[b];
     for (std::size_t k = 0; k < nb::bh::kLeafSums; ++k) {
-      EXPECT_TRUE(same_bits(sums[leaf * nb::bh::kLeafSums + k], want[k]))
-          << "leaf " << leaf << " sum " << k << ": " << sums[leaf * nb::bh::kLeafSums + k] << " vs "
-          << want[k];
+      const int order = k < nb::bh::kLeafQxx     ? (k == nb::bh::kLeafMass ? 0 : 1)
+                        : k < nb::bh::kLeafOxxx  ? 2
+                        : k < nb::bh::kLeafHxxxx ? 3
+                                                 : 4;
+      const double scale =
+          k == nb::bh::kLeafMx || k == nb::bh::kLeafMy ? 100.0 : total * std::pow(100.0, order);
+      const double got = sums[leaf * nb::bh::kLeafSums + k];
+      ASSERT_TRUE(std::isfinite(got)) << "leaf " << leaf << " sum " << k;
+      EXPECT_LE(std::abs(got - want[k]), 1e-15 * static_cast<double>(n + 4) * scale)
+          << "leaf " << leaf << " sum " << k << ": " << got << " vs " << want[k];
     }
   }
 }
@@ -1094,29 +1079,240 @@ TEST(NbodyBarnesHut, LeavesOfAnySizeAreTheSameForAnyThreadCount) {
 }
 
 TEST(NbodyBarnesHut, BuildPhasesShareOutTheBuild) {
-  // Eight phases in order, three of them serial (one thread, the others
-  // waiting); their wall times lie within the build's.
-  const System s = disk(20000, 33, 50.0 * std::sqrt(20.0));
+  // Phases in order, named, their wall times within the build's; at least
+  // one serial (one thread, the others waiting) where threads build, and
+  // the reference build, one serial phase, for few bodies.
+  for (const std::size_t n : {std::size_t{20000}, std::size_t{500}}) {
+    const System s = disk(n, 33, 50.0 * std::sqrt(static_cast<double>(n) / 1000.0));
+    nb::BarnesHutOptions b;
+    static_cast<nb::Options&>(b) = plummer(kSoftening);
+    for (const int threads : {1, 3}) {
+      b.threads = threads;
+      nb::BarnesHut solver;
+      Field f{std::vector<double>(s.size()), std::vector<double>(s.size())};
+      solver.accelerations(s.x, s.y, s.m, f.ax, f.ay, b);
+      const nb::BarnesHutStats& stats = solver.stats();
+      ASSERT_FALSE(stats.build_phases.empty());
+      int serial = 0;
+      double total = 0.0;
+      for (const nb::BarnesHutStats::Phase& phase : stats.build_phases) {
+        EXPECT_STRNE(phase.name, "");
+        EXPECT_GE(phase.seconds, 0.0) << phase.name;
+        serial += phase.serial ? 1 : 0;
+        total += phase.seconds;
+      }
+      EXPECT_GE(serial, 1);
+      if (n < 2000) {
+        EXPECT_EQ(stats.build_phases.size(), 1u);
+      }
+      EXPECT_GT(total, 0.0);
+      EXPECT_LE(total, stats.build_seconds * (1.0 + 1e-9));
+    }
+  }
+}
+
+// ------------------------------------------------------------ the tree's contract ---
+
+namespace {
+
+namespace bh = nb::bh;
+
+bh::BuildSettings settings_for(const nb::BarnesHutOptions& o, int threads) {
+  nb::BarnesHutOptions with = o;
+  with.threads = threads;
+  return bh::build_settings(with);
+}
+
+void fast_build(const System& s, const bh::BuildSettings& settings, bh::BuiltTree& tree) {
+  bh::TreeBuilder builder;
+  std::vector<std::uint64_t> work(bh::kRegions * static_cast<std::size_t>(settings.threads));
+  builder.build(s.x, s.y, s.m, settings, tree, work.data());
+}
+
+void reference_build(const System& s, const bh::BuildSettings& settings, bh::BuiltTree& tree) {
+  bh::ReferenceScratch scratch;
+  bh::reference_build(s.x, s.y, s.m, settings, tree, scratch);
+}
+
+// Node a of tree `fast` and node b of `ref` and their subtrees: the same
+// cells over the same bodies, the same centres, radii and kernel moments to
+// the bit, the same children in order; each child's parent its node.
+::testing::AssertionResult same_subtree(const bh::BuiltTree& fast, std::uint32_t a,
+                                        const bh::BuiltTree& ref, std::uint32_t b) {
+  const bh::Node& x = fast.nodes[a];
+  const bh::Node& y = ref.nodes[b];
+  if (x.begin != y.begin || x.end != y.end || x.children != y.children) {
+    return ::testing::AssertionFailure()
+           << "node [" << x.begin << ", " << x.end << ") with " << x.children << " children vs ["
+           << y.begin << ", " << y.end << ") with " << y.children;
+  }
+  if (std::memcmp(&x.mx, &y.mx, 3 * sizeof(double)) != 0) {
+    return ::testing::AssertionFailure()
+           << "node [" << x.begin << ", " << x.end << "): centre or opening radius differ";
+  }
+  const bool single = fast.single;
+  const void* ma = single ? static_cast<const void*>(fast.node32.data() + a * bh::kMoments)
+                          : static_cast<const void*>(fast.node64.data() + a * bh::kMoments);
+  const void* mb = single ? static_cast<const void*>(ref.node32.data() + b * bh::kMoments)
+                          : static_cast<const void*>(ref.node64.data() + b * bh::kMoments);
+  if (std::memcmp(ma, mb, bh::kMoments * (single ? sizeof(float) : sizeof(double))) != 0) {
+    return ::testing::AssertionFailure()
+           << "node [" << x.begin << ", " << x.end << "): kernel moments differ";
+  }
+  for (std::uint32_t c = 0; c < x.children; ++c) {
+    if (fast.parent[x.child + c] != a || ref.parent[y.child + c] != b) {
+      return ::testing::AssertionFailure() << "a child's parent is wrong";
+    }
+    auto r = same_subtree(fast, x.child + c, ref, y.child + c);
+    if (!r) return r;
+  }
+  return ::testing::AssertionSuccess();
+}
+
+// The fast build against the reference build: the same bodies in the same
+// order, the same tree, the same groups (by their bodies), depth and leaves.
+void expect_reference_tree(const System& s, const nb::BarnesHutOptions& o, int threads) {
+  SCOPED_TRACE("N " + std::to_string(s.size()) + ", threads " + std::to_string(threads) +
+               ", leaf " + std::to_string(o.leaf_size) + ", group " + std::to_string(o.group_size));
+  const bh::BuildSettings settings = settings_for(o, threads);
+  bh::BuiltTree fast;
+  bh::BuiltTree ref;
+  fast_build(s, settings, fast);
+  reference_build(s, settings, ref);
+  const std::size_t n = s.size();
+  ASSERT_EQ(fast.order.size(), n);
+  ASSERT_EQ(ref.order.size(), n);
+  EXPECT_TRUE(std::equal(fast.order.begin(), fast.order.end(), ref.order.begin()));
+  EXPECT_EQ(std::memcmp(fast.sx.data(), ref.sx.data(), n * sizeof(double)), 0);
+  EXPECT_EQ(std::memcmp(fast.sm.data(), ref.sm.data(), n * sizeof(double)), 0);
+  EXPECT_EQ(fast.nodes.size(), ref.nodes.size());
+  EXPECT_EQ(fast.depth, ref.depth);
+  EXPECT_EQ(fast.leaves, ref.leaves);
+  EXPECT_EQ(fast.parent[0], ~std::uint32_t{0});
+  EXPECT_TRUE(same_subtree(fast, 0, ref, 0));
+  ASSERT_EQ(fast.groups.size(), ref.groups.size());
+  for (std::size_t g = 0; g < fast.groups.size(); ++g) {
+    const bh::Node& a = fast.nodes[fast.groups[g]];
+    const bh::Node& b = ref.nodes[ref.groups[g]];
+    ASSERT_EQ(a.begin, b.begin) << "group " << g;
+    ASSERT_EQ(a.end, b.end) << "group " << g;
+  }
+  if (settings.single) {
+    EXPECT_EQ(std::memcmp(fast.sm32.data(), ref.sm32.data(), n * sizeof(float)), 0);
+  }
+}
+
+}  // namespace
+
+// The test systems of the fast build's own tests (clumps at the size where
+// threads start; a disk that gives every thread of 16 several sort ranges;
+// a dense clump and coincident bodies under a far body; lattice points of
+// 300 coincident bodies; leaves of one body and of all) at 1 to 16 threads.
+TEST(NbodyTree, FastBuildIsTheReferenceBuildOnEveryTestSystem) {
   nb::BarnesHutOptions b;
   static_cast<nb::Options&>(b) = plummer(kSoftening);
-  for (const int threads : {1, 3}) {
-    b.threads = threads;
-    nb::BarnesHut solver;
-    Field f{std::vector<double>(s.size()), std::vector<double>(s.size())};
-    solver.accelerations(s.x, s.y, s.m, f.ax, f.ay, b);
-    const nb::BarnesHutStats& stats = solver.stats();
-    ASSERT_EQ(stats.build_phases.size(), 8u);
-    int serial = 0;
-    double total = 0.0;
-    for (const nb::BarnesHutStats::Phase& phase : stats.build_phases) {
-      EXPECT_STRNE(phase.name, "");
-      EXPECT_GE(phase.seconds, 0.0) << phase.name;
-      serial += phase.serial ? 1 : 0;
-      total += phase.seconds;
+  System clump = disk(40000, 23, 1.0);
+  for (std::size_t i = 0; i < clump.size(); i += 80) {
+    clump.x[i] = 0.25;
+    clump.y[i] = -0.5;
+  }
+  clump.x.push_back(1000.0);
+  clump.y.push_back(1000.0);
+  clump.m.push_back(1.0);
+  System lattice = with(disk(4000, 31, 400.0), disk(24000, 32, 3.0, 100.0, -50.0));
+  for (std::size_t i = 0; i < 64 * 300; ++i) {
+    lattice.x.push_back(-200.0 + 25.0 * static_cast<double>(i % 8));
+    lattice.y.push_back(150.0 + 25.0 * static_cast<double>((i / 8) % 8));
+    lattice.m.push_back(0.5 + 0.001 * static_cast<double>(i % 7));
+  }
+  for (const System& s : {clusters(2000, 17), disk(30000, 18, 50.0 * std::sqrt(30.0)),
+                          clusters(30000, 20), clump, lattice}) {
+    for (const int threads : {1, 3, 16}) expect_reference_tree(s, b, threads);
+  }
+  b.precision = nb::Precision::float32;
+  expect_reference_tree(clusters(30000, 20), b, 2);
+  const System two = with(disk(5000, 41, 30.0), disk(1500, 42, 0.01, 12.0, -3.0));
+  for (const auto& [leaf, group] :
+       {std::pair{1, 1}, std::pair{4, 16}, std::pair{64, 500}, std::pair{100000, 128}}) {
+    b.leaf_size = leaf;
+    b.group_size = group;
+    for (const int threads : {1, 7}) expect_reference_tree(two, b, threads);
+  }
+}
+
+// Every node's kernel moments against its bodies' sums about its centre of
+// mass, by definition (float64): to rounding.
+TEST(NbodyTree, NodeMomentsAreTheirBodiesSums) {
+  const System s = clusters(3000, 19);
+  nb::BarnesHutOptions b;
+  static_cast<nb::Options&>(b) = plummer(kSoftening);
+  bh::BuiltTree tree;
+  fast_build(s, settings_for(b, 2), tree);
+  const double extent = tree.square.side;
+  for (std::size_t i = 0; i < tree.nodes.size(); ++i) {
+    const bh::Node& node = tree.nodes[i];
+    double mass = 0.0;
+    double mx = 0.0;
+    double my = 0.0;
+    for (std::uint32_t r = node.begin; r < node.end; ++r) {
+      mass += tree.sm[r];
+      mx += tree.sm[r] * tree.sx[r];
+      my += tree.sm[r] * tree.sy[r];
     }
-    EXPECT_EQ(serial, 3);
-    EXPECT_GT(total, 0.0);
-    EXPECT_LE(total, stats.build_seconds * (1.0 + 1e-9));
+    mx /= mass;
+    my /= mass;
+    ASSERT_NEAR(node.mx, mx, 1e-12 * extent) << "node " << i;
+    ASSERT_NEAR(node.my, my, 1e-12 * extent) << "node " << i;
+    // m, then 3 Q (xx, xy, yy) and 17.5 H (xxxx ... yyyy): kernels.hpp's layout.
+    const double* k = tree.node64.data() + i * bh::kMoments;
+    ASSERT_NEAR(k[0], mass, 1e-13 * mass);
+    const auto moment = [&](int i_, int j_) {
+      double sum = 0.0;
+      for (std::uint32_t r = node.begin; r < node.end; ++r) {
+        sum += tree.sm[r] * std::pow(tree.sx[r] - node.mx, i_) * std::pow(tree.sy[r] - node.my, j_);
+      }
+      return sum;
+    };
+    const double cell2 = mass * extent * extent;
+    EXPECT_NEAR(k[1], 3.0 * moment(2, 0), 1e-11 * cell2) << "node " << i;
+    EXPECT_NEAR(k[2], 3.0 * moment(1, 1), 1e-11 * cell2) << "node " << i;
+    EXPECT_NEAR(k[3], 3.0 * moment(0, 2), 1e-11 * cell2) << "node " << i;
+    EXPECT_NEAR(k[5], 7.5 * moment(3, 0), 1e-11 * cell2 * extent) << "node " << i;
+    EXPECT_NEAR(k[11], 17.5 * moment(4, 0), 1e-11 * cell2 * extent * extent) << "node " << i;
+    EXPECT_NEAR(k[13], 17.5 * moment(2, 2), 1e-11 * cell2 * extent * extent) << "node " << i;
+  }
+}
+
+// The walk over the reference build's tree and over the fast build's: the
+// same bits, on both sides of the size where the solver switches builds.
+TEST(NbodyTree, WalksOverEitherBuildGiveTheSameBits) {
+  for (const std::size_t n : {std::size_t{700}, std::size_t{1999}, std::size_t{2600}}) {
+    const System s = clusters(n, 24 + n);
+    for (const nb::Precision p : {nb::Precision::float64, nb::Precision::float32}) {
+      nb::BarnesHutOptions b;
+      static_cast<nb::Options&>(b) = plummer(kSoftening);
+      b.precision = p;
+      const bh::BuildSettings settings = settings_for(b, 1);
+      Field sums[2];
+      for (int which = 0; which < 2; ++which) {
+        bh::BuiltTree tree;
+        (which == 0 ? fast_build : reference_build)(s, settings, tree);
+        nb::detail::LawParams law = nb::detail::law_params(b, tree.frame);
+        law.float_range = nb::detail::float_range_of(tree.square.side, law.eps2);
+        bh::WalkSettings walk;
+        walk.inv_theta = settings.inv_theta;
+        walk.target_block = static_cast<std::size_t>(nb::kernel_target_block());
+        bh::Walker walker;
+        std::vector<std::uint64_t> work(bh::kRegions);
+        sums[which] = Field{std::vector<double>(n), std::vector<double>(n)};
+        walker.walk(tree, walk, law, tree.frame.scale, settings.single ? tree.frame.factor : b.G,
+                    sums[which].ax, sums[which].ay, work.data());
+      }
+      EXPECT_TRUE(bit_identical(sums[0], sums[1])) << "N " << n;
+      if (n < bh::kParallelFrom) {
+        EXPECT_TRUE(bit_identical(sums[1], barnes_hut(s, b))) << "N " << n;
+      }
+    }
   }
 }
 

@@ -689,7 +689,7 @@ TEST(SceneFileDocs, EveryExampleParsesAndRuns) {
   EXPECT_GE(blocks, 14);  // one per force at least
 }
 
-// --- limits on the raw text (issue 12) ---------------------------------------------
+// --- limits on the raw text -------------------------------------------------------
 
 std::string message_of_text(const std::string& text) {
   try {

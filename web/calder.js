@@ -124,13 +124,10 @@
     },
     stateHash: () => need().stateHash(),
     frame: () => need().frame(),
-    // {kinetic, potential (NaN where the fields have none), total}
-    energy() {
-      const s = need();
-      const kinetic = s.kineticEnergy();
-      const potential = s.potentialEnergy();
-      return {kinetic, potential, total: Number.isNaN(potential) ? kinetic : kinetic + potential};
-    },
+    // {kinetic, potential (NaN where the fields have none), total, exact}: the
+    // HUD's energy, bounded per call (calder::displayed_energy); exact false
+    // where the potential is a sampled estimate.
+    energy: () => need().energy(),
     // Fresh zero-copy views of the bodies' arrays (Float64Array).
     bodies() {
       const s = need();

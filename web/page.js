@@ -129,7 +129,8 @@
     try {
       $('hud-frame').textContent = String(calder.frame());
       $('hud-bodies').textContent = String(calder.bodies().count);
-      $('hud-energy').textContent = formatNumber(calder.energy().total);
+      const energy = calder.energy();  // bounded: a sampled estimate past its pairs
+      $('hud-energy').textContent = (energy.exact ? '' : '~') + formatNumber(energy.total);
       $('hud-hash').textContent = calder.stateHash();
     } catch (e) {
       return;

@@ -23,6 +23,45 @@ namespace calder::app {
 
 namespace {
 
+// The commands, in the order --help lists them.
+std::vector<std::string> command_names(const CLI::App& app) {
+  std::vector<std::string> names;
+  for (const CLI::App* sub : app.get_subcommands([](const CLI::App*) { return true; })) {
+    names.push_back(sub->get_name());
+  }
+  return names;
+}
+
+// "a, b, c <last> d".
+std::string listed(const std::vector<std::string>& names, const char* last) {
+  std::string text;
+  for (std::size_t k = 0; k < names.size(); ++k) {
+    if (k > 0) text += k + 1 == names.size() ? std::string(" ") + last + " " : ", ";
+    text += names[k];
+  }
+  return text;
+}
+
+// Whether argv[1] is a word that names no command (a flag is not one).
+bool unknown_command(const CLI::App& app, int argc, const char* const* argv) {
+  if (argc <= 1 || argv[1][0] == '-') return false;
+  for (const std::string& name : command_names(app)) {
+    if (name == argv[1]) return false;
+  }
+  return true;
+}
+
+// The one-line error for an unknown command, naming every command.
+std::string unknown_command_message(const CLI::App& app, const char* word) {
+  const std::vector<std::string> names = command_names(app);
+  const std::vector<std::string_view> commands(names.begin(), names.end());
+  std::string what = "unknown command '" + detail::printable(word) + "'";
+  if (const auto near = detail::closest(word, commands)) {
+    what += " (did you mean '" + std::string(*near) + "'?)";
+  }
+  return what + "; the commands are " + listed(names, "and");
+}
+
 // A CLI11 parse error (not --help or --version) as the one-line message: what
 // went wrong and which --help to read.
 std::string usage_message(const CLI::ParseError& e, const CLI::App& app, int argc,
@@ -38,16 +77,9 @@ std::string usage_message(const CLI::ParseError& e, const CLI::App& app, int arg
   }
   std::string what = e.what();
   if (dynamic_cast<const CLI::RequiredError*>(&e) != nullptr && argc <= 1) {
-    what = "a command is required: list, run, render, window or sweep";
+    what = "a command is required: " + listed(command_names(app), "or");
   }
-  if (no_command && argc > 1 && argv[1][0] != '-') {
-    const std::vector<std::string_view> commands = {"list", "run", "render", "window", "sweep"};
-    what = "unknown command '" + detail::printable(argv[1]) + "'";
-    if (const auto near = detail::closest(argv[1], commands)) {
-      what += " (did you mean '" + std::string(*near) + "'?)";
-    }
-    what += "; the commands are list, run, render, window and sweep";
-  }
+  if (no_command && unknown_command(app, argc, argv)) what = unknown_command_message(app, argv[1]);
   return what + " (" + hint + ")";
 }
 
@@ -109,6 +141,10 @@ int main(int argc, const char* const* argv, std::ostream& out, std::ostream& err
     } catch (const CLI::ParseError& e) {
       if (e.get_exit_code() != static_cast<int>(CLI::ExitCodes::Success)) {
         throw InputError(usage_message(e, app, argc, argv));
+      }
+      // `calder nosuch --help`: no help for a command that doesn't exist.
+      if (unknown_command(app, argc, argv)) {
+        throw InputError(unknown_command_message(app, argv[1]) + " (see 'calder --help')");
       }
       std::ostringstream help_err;
       app.exit(e, out, help_err);  // --help, --help-all, --version: to `out`, exit 0

@@ -44,14 +44,13 @@ std::uint64_t summary_potential_cost(const World& world) {
 void print_summary(std::ostream& out, const Simulation& simulation, std::uint32_t seed,
                    const std::string& source, const std::function<void()>& before_printing) {
   const World& world = simulation.world();
-  const double kinetic = kinetic_energy(world);
+  // The displays' energy (calder::displayed_energy), with the summary's
+  // larger budget: it is computed once.
+  const DisplayedEnergy energy = displayed_energy(world, summary_potential_pairs);
+  const double kinetic = energy.kinetic;
   std::optional<PotentialEstimate> potential;
-  std::string why_not;
-  try {
-    potential = bounded_potential_energy(world, summary_potential_pairs);
-  } catch (const Error& e) {
-    why_not = e.what();
-  }
+  if (energy.has_potential) potential = energy.potential;
+  const std::string& why_not = energy.why_not;
   const Vec2 momentum = linear_momentum(world);
   const double angular = angular_momentum(world);
   // Finite inputs can still overflow a diagnostic (masses of 1e10 at

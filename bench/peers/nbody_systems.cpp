@@ -6,7 +6,10 @@
 #include <cstddef>
 #include <random>
 #include <thread>
+#include <utility>
 #include <vector>
+
+#include "../../tests/support/nbody_systems.hpp"  // the one clustered generator
 
 namespace calder::peers {
 
@@ -37,27 +40,8 @@ NBodySystem disk(std::size_t n, std::uint64_t seed) {
 }
 
 NBodySystem clusters(std::size_t n, std::uint64_t seed) {
-  std::mt19937_64 g(seed);
-  constexpr std::size_t kClumps = 8;
-  double cx[kClumps];
-  double cy[kClumps];
-  double a[kClumps];
-  for (std::size_t c = 0; c < kClumps; ++c) {
-    cx[c] = 200.0 * uniform(g) - 100.0;
-    cy[c] = 200.0 * uniform(g) - 100.0;
-    a[c] = 1.0 + 4.0 * uniform(g);
-  }
-  NBodySystem s;
-  for (std::size_t i = 0; i < n; ++i) {
-    const std::size_t c = i % kClumps;
-    const double q = std::min(uniform(g), 0.9999);
-    const double radius = a[c] * std::sqrt(q / (1.0 - q));
-    const double angle = 6.283185307179586 * uniform(g);
-    s.x.push_back(cx[c] + radius * std::cos(angle));
-    s.y.push_back(cy[c] + radius * std::sin(angle));
-    s.m.push_back(0.5 + uniform(g));
-  }
-  return s;
+  test::System s = test::clusters(n, seed, {.clumps = 8, .half_span = 100.0, .max_q = 0.9999});
+  return NBodySystem{std::move(s.x), std::move(s.y), std::move(s.m)};
 }
 
 ExactSample exact_sample(const NBodySystem& s, const nbody::Options& options, std::size_t sample) {

@@ -46,6 +46,26 @@ PotentialEstimate bounded_potential_energy(const World& world, std::uint64_t max
 // for each enabled mutual attraction, plus one per body for each other field.
 std::uint64_t potential_energy_cost(const World& world, std::uint64_t max_pairs);
 
+// The energy a display shows, the same in every front end (the renderer's
+// HUD, the calder command's summary, Python, the web page): the kinetic
+// energy and the potential in bounded time (bounded_potential_energy with
+// max_pairs), or none where the fields have no potential (why_not: the
+// reason, calder::Error's message).
+struct DisplayedEnergy {
+  double kinetic = 0.0;
+  bool has_potential = false;
+  PotentialEstimate potential;
+  std::string why_not;  // when !has_potential
+  // kinetic + potential (the kinetic energy alone without a potential).
+  double total() const { return has_potential ? kinetic + potential.value : kinetic; }
+  // Whether total() is exact: every pair summed.
+  bool exact() const { return !has_potential || potential.exact; }
+};
+// The displays' budget a frame: about 5 ms; past it the potential is a
+// sampled estimate, shown with a leading "~".
+inline constexpr std::uint64_t kHudEnergyPairs = std::uint64_t{1} << 18;
+DisplayedEnergy displayed_energy(const World& world, std::uint64_t max_pairs = kHudEnergyPairs);
+
 // Sum of m v.
 Vec2 linear_momentum(const World& world);
 

@@ -14,7 +14,9 @@
 // so that calder reproduces those sketches to the last bits.
 #pragma once
 
+#include <array>
 #include <functional>
+#include <string_view>
 
 #include "calder/vec2.hpp"
 
@@ -84,6 +86,17 @@ enum class DistanceClamp {
   clamp_squared_distance = squared_distance,
   plummer = none,
 };
+
+// The laws' names, as scene files, Python and the web page spell them.
+struct DistanceClampName {
+  std::string_view name;
+  DistanceClamp value;
+};
+inline constexpr std::array<DistanceClampName, 3> kDistanceClampNames{{
+    {"distance", DistanceClamp::distance},
+    {"squared_distance", DistanceClamp::squared_distance},
+    {"none", DistanceClamp::none},
+}};
 
 // How G and the two masses are multiplied. The sketches differ in the last
 // bits: (G * M) * m in examples 2.6, 2.7 and 2.9; G * (M * m) in 2.8 and 2.16.

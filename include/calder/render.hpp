@@ -33,15 +33,12 @@
 #include <string>
 #include <vector>
 
+#include "calder/diagnostics.hpp"  // displayed_energy, kHudEnergyPairs
 #include "calder/scene.hpp"
 #include "calder/vec2.hpp"
 #include "calder/world.hpp"
 
 namespace calder {
-
-// The HUD's energy sums at most this many pairs of each mutual attraction per
-// frame (about 5 ms); past it the potential is a sampled estimate.
-inline constexpr std::uint64_t kHudEnergyPairs = std::uint64_t{1} << 18;
 
 // A colour; components in [0, 1], not premultiplied by alpha.
 struct Color {
@@ -110,7 +107,7 @@ struct RenderStyle {
   bool show_velocity = false;
   // One line of text: frame, body count, total energy (with more than
   // kHudEnergyPairs pairs of mutual attraction, "~" and a sampled estimate:
-  // calder::bounded_potential_energy).
+  // calder::displayed_energy).
   bool show_hud = false;
   double force_scale = 100.0;   // canvas pixels per unit of force (the book's gravity 0.1: 10 px)
   double velocity_scale = 5.0;  // canvas pixels per pixel-per-frame of velocity

@@ -14,6 +14,7 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "calder/fields.hpp"
@@ -252,8 +253,16 @@ struct SceneInfo {
 
 // The built-in scenes, in the book's order.
 const std::vector<SceneInfo>& builtin_scenes();
-// The built-in scene of that name; throws calder::Error (listing the names)
-// if there is none.
+// The built-in scene of that name; throws calder::InputError
+// (unknown_scene_message) if there is none.
 Scene builtin_scene(const std::string& name);
+// Whether `name` is a built-in scene's.
+bool is_builtin_scene(std::string_view name);
+// The one-line error for a name that is no built-in scene, as every front end
+// gives it: "unknown scene 'NAME' (did you mean 'NEAR'?): not a built-in scene
+// (the names)", NEAR the built-in scene or `also` candidate (scene files, say)
+// that NAME is a likely typo of, if any.
+std::string unknown_scene_message(std::string_view name,
+                                  const std::vector<std::string_view>& also = {});
 
 }  // namespace calder

@@ -26,6 +26,15 @@ class SceneFileError : public InputError {
 // Reads and validates a scene file.
 Scene load_scene_file(const std::string& path);
 
+// A scene argument as the front ends take it (the calder command, Python): a
+// scene file's path when it names one (names_scene_file: a path that exists,
+// ends in .toml or holds a '/'), else a built-in scene's name. Throws
+// calder::InputError for an empty name, a folder, or a word that is neither
+// (unknown_scene_message, the current folder's .toml files among the
+// candidates it suggests).
+Scene load_scene(const std::string& name_or_path);
+bool names_scene_file(const std::string& argument);
+
 // Parses scene text; source_name stands for the file in error messages.
 Scene parse_scene(std::string_view text, const std::string& source_name);
 

@@ -262,10 +262,10 @@ void bind_fields(py::module_& m) {
   py::enum_<PairOrder>(m, "PairOrder")
       .value("pairwise", PairOrder::pairwise)
       .value("by_source", PairOrder::by_source);
-  py::enum_<NBodyMethod>(m, "NBodyMethod")
-      .value("exact", NBodyMethod::exact)
-      .value("direct", NBodyMethod::direct)
-      .value("barnes_hut", NBodyMethod::barnes_hut);
+  py::enum_<NBodyMethod> methods(m, "NBodyMethod");
+  for (const NBodyMethodName& method : kNBodyMethodNames) {
+    methods.value(std::string(method.name).c_str(), method.value);
+  }
 
   py::class_<Rect>(m, "Rect", "An axis-aligned rectangle (x, y: top left corner)")
       .def(py::init([](double x, double y, double w, double h) {

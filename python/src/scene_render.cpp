@@ -20,14 +20,9 @@ namespace calder::python {
 
 namespace {
 
-// A built-in scene's name, or the path of a scene file (anything with a
-// '/' or ending in .toml); as the calder command decides.
-Scene scene_from(const std::string& name_or_path) {
-  const bool is_file = name_or_path.find('/') != std::string::npos ||
-                       name_or_path.ends_with(".toml") ||
-                       std::filesystem::exists(std::filesystem::path(name_or_path));
-  return is_file ? load_scene_file(name_or_path) : builtin_scene(name_or_path);
-}
+// A built-in scene's name, or the path of a scene file: as the calder
+// command decides (calder::load_scene).
+Scene scene_from(const std::string& name_or_path) { return load_scene(name_or_path); }
 
 py::array_t<std::uint8_t> image_of(const Canvas& canvas) {
   const std::vector<std::uint8_t> rgba = canvas.rgba();

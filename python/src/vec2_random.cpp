@@ -128,10 +128,10 @@ void bind_vec2_random(py::module_& m) {
   m.def("constrain", &constrain, py::arg("n"), py::arg("low"), py::arg("high"));
 
   // --- the force laws: each returns a force, to pass to apply_force ---
-  py::enum_<DistanceClamp>(m, "DistanceClamp")
-      .value("distance", DistanceClamp::distance)
-      .value("squared_distance", DistanceClamp::squared_distance)
-      .value("none", DistanceClamp::none);
+  py::enum_<DistanceClamp> laws(m, "DistanceClamp");
+  for (const DistanceClampName& law : kDistanceClampNames) {
+    laws.value(std::string(law.name).c_str(), law.value);
+  }
   py::enum_<MassProduct>(m, "MassProduct")
       .value("left_to_right", MassProduct::left_to_right)
       .value("masses_first", MassProduct::masses_first);

@@ -486,6 +486,23 @@ void bind_world(py::module_& m) {
   m.def("potential_energy", py::overload_cast<const World&>(&potential_energy), py::arg("world"),
         "Of the world's attractors and mutual attraction");
   m.def("total_energy", &total_energy, py::arg("world"));
+  py::class_<DisplayedEnergy>(m, "DisplayedEnergy",
+                              "The energy a display shows (the HUD, `calder run`'s summary, "
+                              "the web page): the potential in bounded time")
+      .def_readonly("kinetic", &DisplayedEnergy::kinetic)
+      .def_property_readonly("potential",
+                             [](const DisplayedEnergy& e) -> std::optional<double> {
+                               if (!e.has_potential) return std::nullopt;
+                               return e.potential.value;
+                             })
+      .def_property_readonly("total", &DisplayedEnergy::total)
+      .def_property_readonly("exact", &DisplayedEnergy::exact,
+                             "False where the potential is a sampled estimate")
+      .def_readonly("why_not", &DisplayedEnergy::why_not, "Why there is no potential");
+  m.def("displayed_energy", &displayed_energy, py::arg("world"),
+        py::arg("max_pairs") = kHudEnergyPairs,
+        "Kinetic and potential energy, at most max_pairs pairs of each mutual attraction "
+        "summed (past them a sampled estimate)");
   m.def("linear_momentum", &linear_momentum, py::arg("world"));
   m.def("angular_momentum", &angular_momentum, py::arg("world"), py::arg("origin") = Vec2{});
   m.def("center_of_mass", &center_of_mass, py::arg("world"));

@@ -201,3 +201,44 @@ def test_a_custom_force_returning_nan_or_raising_leaves_the_world_as_it_was():
     force.force = lambda context, i: "not a vector"
     with pytest.raises(calder.Error, match="must return a Vec2"):
         world.step()
+
+
+def test_an_unknown_scene_is_the_commands_message(calder_exe, tmp_path, monkeypatch):
+    # calder.load_scene's rule and message, the command's: a typo's suggestion,
+    # a scene file of the folder among the candidates.
+    import subprocess
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "three.toml").write_text('name = "three"\n')
+    for name in ["example2.7", "three", "nosuch"]:
+        with pytest.raises(calder.Error) as raised:
+            calder.Scene(name)
+        run = subprocess.run([calder_exe, "run", name], capture_output=True, text=True)
+        assert run.returncode == 2
+        assert str(raised.value) == run.stderr.strip().removeprefix("calder: "), name
+
+
+def test_displayed_energy_is_bounded_and_says_when_it_estimates():
+    def world_of(count, field):
+        world = calder.World()
+        rng = calder.Random(5)
+        for _ in range(count):
+            world.add_body(position=(rng.random(640.0), rng.random(360.0)), mass=1.0)
+        world.add(field)
+        return world
+
+    small = world_of(100, calder.MutualAttraction())
+    energy = calder.displayed_energy(small)
+    assert energy.exact and energy.kinetic == calder.kinetic_energy(small)
+    assert energy.potential == pytest.approx(calder.potential_energy(small), rel=1e-12)
+    assert energy.total == energy.kinetic + energy.potential
+    # 800 bodies: 319,600 pairs, past the budget of 2^18: a sampled estimate.
+    big = world_of(800, calder.MutualAttraction())
+    estimate = calder.displayed_energy(big)
+    assert not estimate.exact
+    assert estimate.potential == pytest.approx(calder.potential_energy(big), rel=0.05)
+    assert calder.displayed_energy(big, max_pairs=1 << 20).exact
+    # A custom attraction law has no potential: the kinetic energy alone, and why.
+    custom = calder.MutualAttraction(law=calder.AttractionLaw(custom=lambda d, m1, m2: 1.0))
+    none = calder.displayed_energy(world_of(3, custom))
+    assert none.potential is None and none.total == none.kinetic and none.exact
+    assert "potential" in none.why_not

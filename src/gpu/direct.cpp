@@ -28,9 +28,8 @@ struct DirectPush {
 // Specialization constants: workgroup size, law, whether coincident pairs
 // must be masked (clamped laws, or Plummer without softening).
 std::array<std::int32_t, 3> constants_of(nbody::Law law, bool softened) {
-  const int law_index = law == nbody::Law::plummer ? 0 : law == nbody::Law::clamp_distance ? 1 : 2;
   const bool mask = law != nbody::Law::plummer || !softened;
-  return {static_cast<std::int32_t>(kGroup), law_index, mask ? 1 : 0};
+  return {static_cast<std::int32_t>(kGroup), shader_law(law), mask ? 1 : 0};
 }
 
 }  // namespace

@@ -16,6 +16,7 @@
 #include "calder/step_batch.hpp"
 #include "context.hpp"
 #include "shaders.hpp"
+#include "shaders/interface.h"
 #include "steps.hpp"
 
 namespace calder::gpu {
@@ -25,18 +26,9 @@ namespace {
 constexpr std::uint32_t kGroup = 256;
 constexpr std::uint32_t kNoBody = std::numeric_limits<std::uint32_t>::max();
 
-// steps.comp's flags.
-enum OpFlag : std::int32_t { kEverywhere = 1, kNeverReverse = 2, kPerStep = 4 };
-enum BoundaryFlag : std::uint32_t {
-  kBounce = 1,
-  kWrap = 2,
-  kUseRadius = 4,
-  kBefore = 8,
-  kLeft = 16,
-  kRight = 32,
-  kTop = 64,
-  kBottom = 128,
-};
+// The numbers steps.comp shares with this file: op kinds, flags, edges,
+// laws, boundary flags and the slots of an op's reals.
+using namespace shader;
 
 template <class Real>
 struct StepsPush {
@@ -47,28 +39,32 @@ struct StepsPush {
 std::int32_t edge_index(Edge e) {
   switch (e) {
     case Edge::left:
-      return 0;
+      return kEdgeLeft;
     case Edge::right:
-      return 1;
+      return kEdgeRight;
     case Edge::top:
-      return 2;
+      return kEdgeTop;
     case Edge::bottom:
-      return 3;
+      return kEdgeBottom;
   }
-  return 3;
+  return kEdgeBottom;
 }
 
-std::int32_t law_index(DistanceClamp law) {
+}  // namespace
+
+std::int32_t shader_law(DistanceClamp law) {
   switch (law) {
     case DistanceClamp::distance:
-      return 0;
+      return kLawClampDistance;
     case DistanceClamp::squared_distance:
-      return 1;
+      return kLawClampSquaredDistance;
     case DistanceClamp::none:
-      return 2;
+      return kLawPlummer;
   }
-  return 2;
+  return kLawPlummer;
 }
+
+namespace {
 
 std::uint32_t boundary_flags(const Boundary& b) {
   std::uint32_t f = 0;
@@ -83,39 +79,17 @@ std::uint32_t boundary_flags(const Boundary& b) {
   return f;
 }
 
-// steps.comp's op kinds (its kUniform ... kLift).
+// steps.comp's op kinds (interface.h).
 enum class ShaderOp : std::int32_t {
-  uniform,
-  gravity_scaled,  // g for every body: folded into the constant acceleration
-  drag,
-  friction,
-  attractor,
-  edge_force,
-  fan,
-  lift,
+  uniform = kOpUniform,
+  gravity_scaled = kOpGravityScaled,  // g for every body: folded into the constant acceleration
+  drag = kOpDrag,
+  friction = kOpFriction,
+  attractor = kOpAttractor,
+  edge_force = kOpEdgeForce,
+  fan = kOpFan,
+  lift = kOpLift,
 };
-
-// The slots of an op's reals in steps.comp's op_reals (its P_FX ... P_REACH).
-enum Slot : std::size_t {
-  kFx,
-  kFy,
-  kC,  // drag: c; friction: mu; edge_force, fan: strength; lift: coefficient
-  kNormal,
-  kXMin,
-  kXMax,
-  kYMin,
-  kYMax,
-  kTolerance,
-  kPx,
-  kPy,
-  kGm,
-  kLo,
-  kHi,
-  kEps,
-  kReach,  // fan: reach; edge_force: margin
-  kSlots,
-};
-static_assert(kSlots == 16, "steps.comp reads 16 reals an op (prm)");
 
 // One op as steps.comp reads it: its kind, flags, law or edge (which), the
 // forces of each step when it has them, and its reals.
@@ -125,7 +99,7 @@ struct OpRecord {
   std::int32_t flags = 0;
   std::int32_t which = 0;
   const double* per_step = nullptr;
-  std::array<R, kSlots> reals{};
+  std::array<R, std::size_t{kSlots}> reals{};
 };
 
 // --- each field kind's law as an op record (the fast arithmetic's law) ---
@@ -133,26 +107,26 @@ struct OpRecord {
 template <class R>
 void encode(const FieldKind<Gravity>::Law<R>& law, OpRecord<R>& op) {
   op.kind = law.scaled ? ShaderOp::gravity_scaled : ShaderOp::uniform;
-  op.reals[kFx] = law.gx;
-  op.reals[kFy] = law.gy;
+  op.reals[kSlotFx] = law.gx;
+  op.reals[kSlotFy] = law.gy;
 }
 
 template <class R>
 void encode(const FieldKind<Wind>::Law<R>& law, OpRecord<R>& op) {
-  op.reals[kFx] = law.fx;
-  op.reals[kFy] = law.fy;
+  op.reals[kSlotFx] = law.fx;
+  op.reals[kSlotFy] = law.fy;
 }
 
 template <class R>
 void encode(const FieldKind<Helium>::Law<R>& law, OpRecord<R>& op) {
-  op.reals[kFx] = law.fx;
-  op.reals[kFy] = law.fy;
+  op.reals[kSlotFx] = law.fx;
+  op.reals[kSlotFy] = law.fy;
 }
 
 template <class R>
 void encode(const FieldKind<NoiseWind>::Law<R>& law, OpRecord<R>& op) {
-  op.reals[kFx] = law.fx;
-  op.reals[kFy] = law.fy;
+  op.reals[kSlotFx] = law.fx;
+  op.reals[kSlotFy] = law.fy;
   op.per_step = law.per_step;
 }
 
@@ -160,33 +134,33 @@ template <class R>
 void encode(const FieldKind<Drag>::Law<R>& law, OpRecord<R>& op) {
   constexpr R kInf = std::numeric_limits<R>::infinity();
   op.kind = ShaderOp::drag;
-  op.flags = kEverywhere | (law.never_reverse ? kNeverReverse : 0);
-  op.reals[kC] = law.c;
-  op.reals[kXMin] = -kInf;
-  op.reals[kXMax] = kInf;
-  op.reals[kYMin] = -kInf;
-  op.reals[kYMax] = kInf;
+  op.flags = kOpEverywhere | (law.never_reverse ? kOpNeverReverse : 0);
+  op.reals[kSlotC] = law.c;
+  op.reals[kSlotXMin] = -kInf;
+  op.reals[kSlotXMax] = kInf;
+  op.reals[kSlotYMin] = -kInf;
+  op.reals[kSlotYMax] = kInf;
 }
 
 template <class R>
 void encode(const FieldKind<Liquid>::Law<R>& law, OpRecord<R>& op) {
   op.kind = ShaderOp::drag;
-  op.flags = law.never_reverse ? kNeverReverse : 0;
-  op.reals[kC] = law.c;
-  op.reals[kXMin] = law.x_min;
-  op.reals[kXMax] = law.x_max;
-  op.reals[kYMin] = law.y_min;
-  op.reals[kYMax] = law.y_max;
+  op.flags = law.never_reverse ? kOpNeverReverse : 0;
+  op.reals[kSlotC] = law.c;
+  op.reals[kSlotXMin] = law.x_min;
+  op.reals[kSlotXMax] = law.x_max;
+  op.reals[kSlotYMin] = law.y_min;
+  op.reals[kSlotYMax] = law.y_max;
 }
 
 template <class R>
 void encode(const FieldKind<Friction>::Law<R>& law, OpRecord<R>& op) {
   op.kind = ShaderOp::friction;
-  op.flags = law.never_reverse ? kNeverReverse : 0;
+  op.flags = law.never_reverse ? kOpNeverReverse : 0;
   op.which = edge_index(law.surface);
-  op.reals[kC] = law.mu;
-  op.reals[kNormal] = law.normal;
-  op.reals[kTolerance] = law.tolerance;
+  op.reals[kSlotC] = law.mu;
+  op.reals[kSlotNormal] = law.normal;
+  op.reals[kSlotTolerance] = law.tolerance;
 }
 
 // The fast form: G M w r, w = 1 / (d_c^2 d), 1 / (q d) or 1 / s^3 (G M in
@@ -194,35 +168,35 @@ void encode(const FieldKind<Friction>::Law<R>& law, OpRecord<R>& op) {
 template <class R>
 void encode(const FieldKind<Attractor>::Law<R>& law, OpRecord<R>& op) {
   op.kind = ShaderOp::attractor;
-  op.which = law_index(law.clamp);
-  op.reals[kPx] = law.px;
-  op.reals[kPy] = law.py;
-  op.reals[kGm] = law.gm;
-  op.reals[kLo] = law.lo;
-  op.reals[kHi] = law.hi;
-  op.reals[kEps] = law.eps;
+  op.which = shader_law(law.clamp);
+  op.reals[kSlotPx] = law.px;
+  op.reals[kSlotPy] = law.py;
+  op.reals[kSlotGm] = law.gm;
+  op.reals[kSlotLo] = law.lo;
+  op.reals[kSlotHi] = law.hi;
+  op.reals[kSlotEps] = law.eps;
 }
 
 template <class R>
 void encode(const FieldKind<EdgeForce>::Law<R>& law, OpRecord<R>& op) {
   op.kind = ShaderOp::edge_force;
-  op.reals[kC] = law.strength;
-  op.reals[kReach] = law.margin;
+  op.reals[kSlotC] = law.strength;
+  op.reals[kSlotReach] = law.margin;
 }
 
 template <class R>
 void encode(const FieldKind<Fan>::Law<R>& law, OpRecord<R>& op) {
   op.kind = ShaderOp::fan;
-  op.reals[kPx] = law.px;
-  op.reals[kPy] = law.py;
-  op.reals[kC] = law.strength;
-  op.reals[kReach] = law.reach;
+  op.reals[kSlotPx] = law.px;
+  op.reals[kSlotPy] = law.py;
+  op.reals[kSlotC] = law.strength;
+  op.reals[kSlotReach] = law.reach;
 }
 
 template <class R>
 void encode(const FieldKind<Lift>::Law<R>& law, OpRecord<R>& op) {
   op.kind = ShaderOp::lift;
-  op.reals[kC] = law.coefficient;
+  op.reals[kSlotC] = law.coefficient;
 }
 
 // Every kind with a law has an encode: a new kind can't be skipped silently.
@@ -303,14 +277,14 @@ void Stepper::upload_ops(const bulk::detail::Plan& plan, int steps, Real2<R>& co
   for (const bulk::detail::Op& op : plan.ops) {
     const OpRecord<R> record = record_of<R>(op);
     if (record.kind == ShaderOp::gravity_scaled) {  // g for every body: folded
-      constant.x += record.reals[kFx];
-      constant.y += record.reals[kFy];
+      constant.x += record.reals[kSlotFx];
+      constant.y += record.reals[kSlotFy];
       continue;
     }
     std::int32_t flags = record.flags;
     std::int32_t offset = 0;
     if (record.per_step != nullptr) {
-      flags |= kPerStep;
+      flags |= kOpPerStep;
       offset = static_cast<std::int32_t>(per_step.size());
       for (int s = 0; s < 2 * steps; ++s) per_step.push_back(R(record.per_step[s]));
     }
@@ -320,13 +294,14 @@ void Stepper::upload_ops(const bulk::detail::Plan& plan, int steps, Real2<R>& co
   ops_ = static_cast<std::uint32_t>(ints.size() / 4);
   // The specialization: workgroup, fixed op count (or -1), kinds, flags,
   // laws or edges.
-  constants_.assign(14, 0);
+  constexpr std::size_t kFixed = kFixedOpsMax;
+  constants_.assign(2 + 3 * kFixed, 0);
   constants_[0] = static_cast<std::int32_t>(kGroup);
-  constants_[1] = ops_ <= 4 ? static_cast<std::int32_t>(ops_) : -1;
-  for (std::size_t k = 0; k < ops_ && ops_ <= 4; ++k) {
+  constants_[1] = ops_ <= kFixed ? static_cast<std::int32_t>(ops_) : -1;
+  for (std::size_t k = 0; k < ops_ && ops_ <= kFixed; ++k) {
     constants_[2 + k] = ints[4 * k];
-    constants_[6 + k] = ints[4 * k + 1];
-    constants_[10 + k] = ints[4 * k + 2];
+    constants_[2 + kFixed + k] = ints[4 * k + 1];
+    constants_[2 + 2 * kFixed + k] = ints[4 * k + 2];
   }
   const auto grow = [&](Buffer& b, std::size_t bytes) {
     if (b.bytes() < std::max<std::size_t>(bytes, 4)) {

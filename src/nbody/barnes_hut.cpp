@@ -1,8 +1,10 @@
 // SPDX-License-Identifier: MIT
 // calder::nbody: Barnes-Hut on a quadtree of Morton-sorted bodies (see
 // calder/nbody.hpp for the algorithm and its guarantees). This file checks
-// the options and runs the steps, each in its own file (barnes_hut_tree.hpp):
-// build, multipole terms, walk; then the sums go back to the caller's order.
+// the options and runs the steps, each in its own files (barnes_hut_tree.hpp):
+// a tree builder (the fast one, or the reference build for few bodies), the
+// built tree, and a walker that sums over it and adds the sums to the
+// caller's arrays.
 #include <algorithm>
 #include <chrono>
 #include <cstddef>
@@ -12,15 +14,15 @@
 #include <span>
 #include <string>
 #include <utility>
+#include <vector>
 
+#include "barnes_hut_builder.hpp"
+#include "barnes_hut_reference.hpp"
 #include "barnes_hut_tree.hpp"
+#include "barnes_hut_walker.hpp"
 #include "calder/error.hpp"
 #include "common.hpp"
 #include "kernels.hpp"
-
-#if defined(_OPENMP)
-#include <omp.h>
-#endif
 
 namespace calder::nbody {
 
@@ -53,6 +55,32 @@ void check_options(const char* where, std::size_t n, const BarnesHutOptions& opt
 
 }  // namespace
 
+// The solver's state between calls: the builders, the tree they hand to the
+// walk, the walker, and the counts the stats report.
+struct BarnesHut::Workspace {
+  BarnesHutStats stats;
+  bh::TreeBuilder builder;
+  bh::ReferenceScratch reference;
+  bh::BuiltTree tree;
+  bh::Walker walker;
+  std::vector<std::uint64_t> work;  // work[region * team + t] (bh::Region)
+};
+
+namespace bh {
+
+BuildSettings build_settings(const BarnesHutOptions& options) {
+  BuildSettings s;
+  s.leaf_size = static_cast<std::size_t>(options.leaf_size);
+  s.group_size = static_cast<std::size_t>(options.group_size);
+  s.inv_theta = options.theta > 0.0 ? 1.0 / options.theta : std::numeric_limits<double>::infinity();
+  s.single = options.precision == Precision::float32;
+  s.G = options.G;
+  s.threads = detail::thread_count(options);
+  return s;
+}
+
+}  // namespace bh
+
 BarnesHut::BarnesHut() : workspace_(std::make_unique<Workspace>()) {}
 BarnesHut::~BarnesHut() = default;
 BarnesHut::BarnesHut(BarnesHut&&) noexcept = default;
@@ -61,21 +89,6 @@ BarnesHut& BarnesHut::operator=(BarnesHut&&) noexcept = default;
 const BarnesHutStats& BarnesHut::stats() const {
   static const BarnesHutStats empty;
   return workspace_ ? workspace_->stats : empty;
-}
-
-// Thread t's part of (ax, ay) += factor * the sums, from Morton order back
-// to the caller's (a permutation: no two ranks write one body). The writes
-// land at random: the team splits the 2n writes (ax's ranks, then ay's) in
-// equal slices, so that each thread writes one component over a run of
-// ranks (two at most) and two threads rarely write one cache line.
-void BarnesHut::Workspace::scatter_share(std::size_t t, std::size_t nt, double factor,
-                                         std::span<double> ax, std::span<double> ay) {
-  const std::size_t n = order.size();
-  const std::size_t lo = 2 * n * t / nt;
-  const std::size_t hi = 2 * n * (t + 1) / nt;
-  for (std::size_t u = lo; u < std::min(hi, n); ++u) ax[order[u]] += factor * sum_x[u];
-  for (std::size_t u = std::max(lo, n); u < hi; ++u) ay[order[u - n]] += factor * sum_y[u - n];
-  work[bh::kRegionScatter * nt + t] = hi - lo;
 }
 
 void BarnesHut::accelerations(std::span<const double> x, std::span<const double> y,
@@ -99,38 +112,47 @@ void BarnesHut::accelerations(std::span<const double> x, std::span<const double>
     w.stats.work.clear();
     return;
   }
-  const int threads = detail::thread_count(options);
+  const bh::BuildSettings settings = bh::build_settings(options);
+  const auto team = static_cast<std::size_t>(bh::team_for(n, settings.threads));
+  w.work.assign(bh::kRegions * team, 0);
 
   const Clock::time_point t0 = Clock::now();
-  w.leaf_size = static_cast<std::size_t>(options.leaf_size);
-  w.group_size = static_cast<std::size_t>(options.group_size);
-  w.target_block = static_cast<std::size_t>(options.target_block < 0 ? kernel_target_block()
-                                                                     : options.target_block);
-  w.inv_theta = options.theta > 0.0 ? 1.0 / options.theta : std::numeric_limits<double>::infinity();
-  w.single = options.precision == Precision::float32;
-  w.build(x, y, mass, threads, options.G);
+  if (n < bh::kParallelFrom) {
+    bh::reference_build(x, y, mass, settings, w.tree, w.reference);
+    w.stats.build_phases.push_back(
+        BarnesHutStats::Phase{"reference build", seconds_since(t0), true});
+    w.work[bh::kRegionBodies] = n;
+    w.work[bh::kRegionRanges] = n;
+    w.work[bh::kRegionSubtrees] = n;
+    w.work[bh::kRegionNodes] = w.tree.nodes.size();
+  } else {
+    w.builder.build(x, y, mass, settings, w.tree, w.work.data());
+    const double* end = w.builder.phase_end();
+    for (int k = 0; k < bh::kBuildPhases; ++k) {
+      w.stats.build_phases.push_back(BarnesHutStats::Phase{
+          bh::kBuildPhaseNames[k].name, end[k + 1] - end[k], bh::kBuildPhaseNames[k].serial});
+    }
+  }
   w.stats.build_seconds = seconds_since(t0);
 
   const Clock::time_point t1 = Clock::now();
-  detail::LawParams p = detail::law_params(options, w.frame);
-  p.float_range = detail::float_range_of(w.side, p.eps2);
-  w.walk(p, w.frame.scale, threads, w.single ? w.frame.factor : options.G, ax, ay);
+  detail::LawParams p = detail::law_params(options, w.tree.frame);
+  p.float_range = detail::float_range_of(w.tree.square.side, p.eps2);
+  bh::WalkSettings walk;
+  walk.inv_theta = settings.inv_theta;
+  walk.target_block = static_cast<std::size_t>(options.target_block < 0 ? kernel_target_block()
+                                                                        : options.target_block);
+  walk.threads = settings.threads;
+  w.walker.walk(w.tree, walk, p, w.tree.frame.scale,
+                settings.single ? w.tree.frame.factor : options.G, ax, ay, w.work.data());
   w.stats.walk_seconds = seconds_since(t1);
 
-  for (int k = 0; k < bh::kBuildPhases; ++k) {
-    w.stats.build_phases.push_back(BarnesHutStats::Phase{bh::kBuildPhaseNames[k].name,
-                                                         w.phase_end[k + 1] - w.phase_end[k],
-                                                         bh::kBuildPhaseNames[k].serial});
-  }
   w.stats.nodes = w.tree.nodes.size();
   w.stats.groups = w.tree.groups.size();
   w.stats.depth = w.tree.depth;
   w.stats.leaves = w.tree.leaves;
-  for (const auto& s : w.scratch) {
-    w.stats.interactions += s.interactions;
-    w.stats.node_interactions += s.node_interactions;
-  }
-  const auto team = static_cast<std::size_t>(w.team);
+  w.stats.interactions = w.walker.interactions();
+  w.stats.node_interactions = w.walker.node_interactions();
   w.stats.work.resize(bh::kRegions);
   for (std::size_t r = 0; r < bh::kRegions; ++r) {
     const std::uint64_t* first = w.work.data() + r * team;

@@ -27,6 +27,38 @@ inline std::uint64_t spread(std::uint32_t v) {
   return x;
 }
 
+// The inverse of spread: bits 0, 2, 4, ... of x.
+inline std::uint32_t compact(std::uint64_t x) {
+  x &= 0x5555555555555555ull;
+  x = (x | (x >> 1)) & 0x3333333333333333ull;
+  x = (x | (x >> 2)) & 0x0F0F0F0F0F0F0F0Full;
+  x = (x | (x >> 4)) & 0x00FF00FF00FF00FFull;
+  x = (x | (x >> 8)) & 0x0000FFFF0000FFFFull;
+  x = (x | (x >> 16)) & 0x00000000FFFFFFFFull;
+  return static_cast<std::uint32_t>(x);
+}
+
+inline int leading_zeros(std::uint64_t x) {  // x != 0 (no <bit>: Emscripten's libc++ 13 lacks it)
+#if defined(__GNUC__) || defined(__clang__)
+  return __builtin_clzll(x);
+#else
+  int n = 0;
+  for (int step = 32; step > 0; step /= 2) {
+    if ((x >> (64 - step)) == 0) {
+      n += step;
+      x <<= step;
+    }
+  }
+  return n;
+#endif
+}
+
+// The quadtree levels that Morton codes share, from the bits in which they
+// differ: kBits where they are all one code.
+inline int shared_levels(std::uint64_t differ) {
+  return differ == 0 ? kBits : (leading_zeros(differ) - (64 - 2 * kBits)) / 2;
+}
+
 // The Morton code of a point in the root square [x0, x0 + side) x [y0, y0 + side).
 struct MortonCoder {
   double x0;

@@ -539,15 +539,15 @@ void Canvas::Impl::draw_text(const World& world, const RenderStyle& style, std::
     text_box(cr, 6.0, 6.0, false, legend, true, style.text_color);
   }
   if (style.show_hud) {
+    // Bounded per frame: past kHudEnergyPairs pairs the potential is a
+    // sampled estimate, shown with a leading '~'.
+    const DisplayedEnergy e = displayed_energy(world);
     std::string energy;
-    try {
-      // Bounded per frame: past kHudEnergyPairs pairs the potential is a
-      // sampled estimate, shown with a leading '~'.
-      const PotentialEstimate potential = bounded_potential_energy(world, kHudEnergyPairs);
-      energy = potential.exact ? std::string() : std::string(1, '~');
-      energy += format_short(kinetic_energy(world) + potential.value);
-    } catch (const Error&) {
-      energy = "n/a";  // a custom attraction law has no potential
+    if (e.has_potential) {
+      energy = e.exact() ? std::string() : std::string(1, '~');
+      energy += format_short(e.total());
+    } else {
+      energy = "n/a";  // a field without a potential (a custom attraction law)
     }
     const std::string line = "frame " + std::to_string(frame) + "   bodies " +
                              std::to_string(world.body_count()) + "   energy " + energy;

@@ -62,11 +62,15 @@ inline constexpr std::array<Choice<BodyGroup::Layout>, 2> kLayouts{{
     {"orbit", BodyGroup::Layout::orbit},
 }};
 
-inline constexpr std::array<Choice<DistanceClamp>, 3> kClamps{{
-    {"distance", DistanceClamp::distance},
-    {"squared_distance", DistanceClamp::squared_distance},
-    {"none", DistanceClamp::none},
-}};
+// The core's public name tables as tables here.
+template <class E, class Name, std::size_t N>
+constexpr std::array<Choice<E>, N> choices_of(const std::array<Name, N>& names) {
+  std::array<Choice<E>, N> out{};
+  for (std::size_t i = 0; i < N; ++i) out[i] = {names[i].name, names[i].value};
+  return out;
+}
+
+inline constexpr auto kClamps = choices_of<DistanceClamp>(kDistanceClampNames);
 
 inline constexpr std::array<Choice<MassProduct>, 2> kProducts{{
     {"left_to_right", MassProduct::left_to_right},
@@ -78,20 +82,8 @@ inline constexpr std::array<Choice<PairOrder>, 2> kPairOrders{{
     {"by_source", PairOrder::by_source},
 }};
 
-// The core's one list of arithmetic names (calder::kArithmeticNames), as a table here.
-inline constexpr auto kArithmetics = [] {
-  std::array<Choice<Arithmetic>, kArithmeticNames.size()> out{};
-  for (std::size_t i = 0; i < out.size(); ++i) {
-    out[i] = {kArithmeticNames[i].name, kArithmeticNames[i].value};
-  }
-  return out;
-}();
-
-inline constexpr std::array<Choice<NBodyMethod>, 3> kNBodyMethods{{
-    {"exact", NBodyMethod::exact},
-    {"direct", NBodyMethod::direct},
-    {"barnes_hut", NBodyMethod::barnes_hut},
-}};
+inline constexpr auto kArithmetics = choices_of<Arithmetic>(kArithmeticNames);
+inline constexpr auto kNBodyMethods = choices_of<NBodyMethod>(kNBodyMethodNames);
 
 // The table of an enumeration a field parameter may have (see FieldKind).
 constexpr const auto& choices(Edge) { return kEdges; }

@@ -324,7 +324,7 @@ case "$case_name" in
     run_calder run bad.toml
     expect_error 2 "bad.toml:1:9: the file is not valid UTF-8"
     ;;
-  # --- costs that grow with the input, and long frames (issue: bounded, interruptible) ---
+  # --- costs that grow with the input, and long frames (bounded, interruptible) --------
   summary_many_bodies)
     # 100,000 bodies under Barnes-Hut, no frame: the summary's potential energy
     # would sum 5 * 10^9 pairs (minutes); it samples a bounded number, and says so.
@@ -559,10 +559,15 @@ case "$case_name" in
     expect_error 2 "big.toml: 10000000 bodies for 10000000 frames" "over the budget of 1e12" "--no-work-limit"
     expect_within 2000
     ;;
-  # --- friendlier command errors (issue 13) -------------------------------------------
+  # --- friendlier command errors: suggestions -----------------------------------------
   unknown_command)
     run_calder runn example-2.1
-    expect_error 2 "unknown command 'runn' (did you mean 'run'?)"
+    expect_error 2 "unknown command 'runn' (did you mean 'run'?)" \
+      "the commands are list, run, render, window and devices"
+    run_calder nosuch --help
+    expect_error 2 "unknown command 'nosuch'; the commands are list, run, render, window and devices"
+    run_calder
+    expect_error 2 "a command is required: list, run, render, window or devices"
     ;;
   near_scene_names)
     run_calder run example2.7

@@ -34,20 +34,12 @@
 #include "calder/scene_file.hpp"
 #include "calder/snapshot.hpp"
 #include "calder/trajectory.hpp"
-#include "scene_file/names.hpp"
 
 namespace calder::web {
 
 using emscripten::val;
 
 namespace {
-
-bool is_builtin(const std::string& name) {
-  for (const SceneInfo& info : builtin_scenes()) {
-    if (info.name == name) return true;
-  }
-  return false;
-}
 
 // Scene text is anything with a line break, a '=' or a '[': no scene name has them.
 bool looks_like_toml(const std::string& source) {
@@ -57,13 +49,8 @@ bool looks_like_toml(const std::string& source) {
 Scene scene_from(const std::string& source, const std::string& source_name) {
   if (source.empty()) throw Error("the scene name is empty");
   if (looks_like_toml(source)) return parse_scene(source, source_name);
-  if (is_builtin(source)) return builtin_scene(source);
-  std::string names;
-  for (const SceneInfo& info : builtin_scenes()) {
-    names += names.empty() ? "" : ", ";
-    names += info.name;
-  }
-  throw Error("unknown scene '" + source + "': not a built-in scene (" + names + ")");
+  if (is_builtin_scene(source)) return builtin_scene(source);
+  throw Error(unknown_scene_message(source));
 }
 
 // The seed as `calder run --seed` takes it: an integer from 0 to 2^32 - 1.
@@ -155,14 +142,19 @@ class WebSimulation {
     return calder::state_hash_text(simulation_.world());
   }
   [[nodiscard]] double seed() const { return seed_; }
-  [[nodiscard]] double kinetic() const { return kinetic_energy(simulation_.world()); }
-  // NaN where the world's fields have no potential (wind, drag, ...).
-  [[nodiscard]] double potential() const {
-    try {
-      return potential_energy(simulation_.world());
-    } catch (const Error&) {
-      return std::numeric_limits<double>::quiet_NaN();
-    }
+  // The HUD's energy (calder::displayed_energy, as the command and the
+  // renderer show it): {kinetic, potential (NaN where the fields have none),
+  // total, exact}; its pairs bounded, so that a frame's cost does not grow as
+  // N^2 (past kHudEnergyPairs pairs a sampled estimate, exact false).
+  [[nodiscard]] val energy() const {
+    const DisplayedEnergy e = displayed_energy(simulation_.world());
+    val out = val::object();
+    out.set("kinetic", e.kinetic);
+    out.set("potential",
+            e.has_potential ? e.potential.value : std::numeric_limits<double>::quiet_NaN());
+    out.set("total", e.total());
+    out.set("exact", e.exact());
+    return out;
   }
 
   // Zero-copy views of the bodies; stale after the heap grows or bodies change.
@@ -346,7 +338,7 @@ class WebSimulation {
     const std::string name = method.isString() ? method.as<std::string>() : std::string("?");
     std::optional<NBodyMethod> chosen;
     std::string names;
-    for (const auto& choice : scene_file_detail::kNBodyMethods) {
+    for (const NBodyMethodName& choice : kNBodyMethodNames) {
       if (choice.name == name) chosen = choice.value;
       names += names.empty() ? "" : ", ";
       names += choice.name;
@@ -400,8 +392,7 @@ EMSCRIPTEN_BINDINGS(calder_web) {
       .function("bodyCount", &WebSimulation::body_count)
       .function("stateHash", &WebSimulation::state_hash_text)
       .function("seed", &WebSimulation::seed)
-      .function("kineticEnergy", &WebSimulation::kinetic)
-      .function("potentialEnergy", &WebSimulation::potential)
+      .function("energy", &WebSimulation::energy)
       .function("view", &WebSimulation::view)
       .function("forces", &WebSimulation::forces)
       .function("describe", &WebSimulation::describe)

@@ -156,6 +156,29 @@ try {
   await page.click('#apply');
   check(!(await page.isVisible('#editor-error')), 'a good edit applies and clears the message');
 
+  // --- the HUD's energy: bounded (calder::displayed_energy), "~" past its pairs ---
+  {
+    const small = await page.evaluate(() => calder.energy());
+    check(small.exact === true &&
+              small.total === (Number.isNaN(small.potential) ? small.kinetic : small.kinetic + small.potential),
+          `a small scene's energy is exact (${JSON.stringify(small)})`);
+    await page.fill('#editor', 'frames = 100000\n[[bodies]]\ncount = 3000\nmass = 1\n' +
+                    'x = { min = 0, max = 640 }\ny = { min = 0, max = 360 }\n' +
+                    '[[fields]]\ntype = "mutual_attraction"\nmethod = "barnes_hut"\n');
+    await page.click('#apply');
+    const big = await page.evaluate(() => {
+      const t0 = performance.now();
+      const e = calder.energy();
+      return {...e, ms: performance.now() - t0};
+    });
+    check(big.exact === false && Number.isFinite(big.potential) && big.total === big.kinetic + big.potential,
+          `3000 bodies (4.5e6 pairs): a sampled estimate (${JSON.stringify(big)})`);
+    await page.waitForFunction(() => document.getElementById('hud-energy').textContent.startsWith('~'),
+                               null, {timeout: 5000}).catch(() => {});
+    const shown = await hud('energy');
+    check(shown.startsWith('~'), `the HUD shows the estimate with a leading ~ ("${shown}")`);
+  }
+
   // --- a scene file from disk, and the edited one saved ---
   const fromDisk = readFileSync(join(kRoot, 'scenes/exercise-2.9.toml'));
   await page.setInputFiles('#file', {name: 'boxes.toml', mimeType: 'text/plain', buffer: fromDisk});

@@ -152,7 +152,8 @@ for (const seed of [-1, 4294967296, 1.5, 'abc']) {
 }
 {
   const e = thrown(() => new core.Simulation('example-2.77', {}));
-  check(e !== null && /^unknown scene 'example-2.77': not a built-in scene \(example-2.1, /.test(message(e)),
+  check(e !== null &&
+        /^unknown scene 'example-2.77' \(did you mean 'example-2.7'\?\): not a built-in scene \(example-2.1, /.test(message(e)),
         `unknown scene: "${message(e).slice(0, 60)}..."`);
 }
 

@@ -5,8 +5,10 @@
 // sums its pairs.
 #pragma once
 
+#include <array>
 #include <optional>
 #include <string>
+#include <string_view>
 
 #include "calder/field_kinds/kind.hpp"
 #include "calder/forces.hpp"
@@ -42,6 +44,17 @@ enum class NBodyMethod {
   // O(n log n) on a quadtree (calder::nbody), approximate: see theta.
   barnes_hut,
 };
+
+// The methods' names, as scene files, Python and the web page spell them.
+struct NBodyMethodName {
+  std::string_view name;
+  NBodyMethod value;
+};
+inline constexpr std::array<NBodyMethodName, 3> kNBodyMethodNames{{
+    {"exact", NBodyMethod::exact},
+    {"direct", NBodyMethod::direct},
+    {"barnes_hut", NBodyMethod::barnes_hut},
+}};
 
 // Barnes-Hut's opening angle unless a field or calder::nbody's options say
 // otherwise: the largest in steps of 0.05 whose RMS relative force error on a

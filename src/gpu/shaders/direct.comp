@@ -5,9 +5,9 @@
 // order. No atomics: a target's sum is one invocation's, in a fixed order,
 // so the same device gives the same bits every run.
 //
-//   w = 1 / (r^2 + eps^2)^(3/2)        kLaw 0, Plummer
-//   w = 1 / (r d^2), d = clamp(r)      kLaw 1, the book's clamp
-//   w = 1 / (r q),   q = clamp(r^2)    kLaw 2, the squared clamp
+//   w = 1 / (r^2 + eps^2)^(3/2)        kLaw kLawPlummer
+//   w = 1 / (r d^2), d = clamp(r)      kLaw kLawClampDistance, the book's clamp
+//   w = 1 / (r q),   q = clamp(r^2)    kLaw kLawClampSquaredDistance
 //   sum += m_s w (p_s - p_t), w = 0 where p_s == p_t (kMask)
 //
 // FLOAT64 defined: doubles throughout. The square root's reciprocal and the
@@ -19,9 +19,12 @@
 // the pair; a tile's sum in float, the tiles' sums added with the rounding
 // error kept (TwoSum), the pair (sum, error) written out.
 #version 450
+#extension GL_GOOGLE_include_directive : require
+
+#include "interface.h"
 
 layout(local_size_x_id = 0) in;
-layout(constant_id = 1) const int kLaw = 0;
+layout(constant_id = 1) const int kLaw = kLawPlummer;
 layout(constant_id = 2) const int kMask = 1;
 
 #ifdef FLOAT64
@@ -108,10 +111,10 @@ void main() {
       const double dy = s.y - me.y;
       const double r2 = dx * dx + dy * dy;
       double w;
-      if (kLaw == 0) {
+      if (kLaw == kLawPlummer) {
         const double inv = rsqrt64(r2 + p.eps2);
         w = inv * inv * inv;
-      } else if (kLaw == 1) {
+      } else if (kLaw == kLawClampDistance) {
         const double inv = rsqrt64(r2);
         const double d = clamp(r2 * inv, p.lo, p.hi);
         w = inv * recip64(d * d);
@@ -127,10 +130,10 @@ void main() {
       const float dy = (s.y - me.y) + (s.w - me.w);
       const float r2 = dx * dx + dy * dy;
       float w;
-      if (kLaw == 0) {
+      if (kLaw == kLawPlummer) {
         const float inv = inversesqrt(r2 + p.eps2);
         w = inv * inv * inv;
-      } else if (kLaw == 1) {
+      } else if (kLaw == kLawClampDistance) {
         const float inv = inversesqrt(r2);
         const float d = clamp(r2 * inv, p.lo, p.hi);
         w = inv / (d * d);

@@ -6,6 +6,9 @@
 // semi-implicit Euler and the boundary. Bodies don't interact: no shared
 // memory, no order between invocations, the same bits every run.
 #version 450
+#extension GL_GOOGLE_include_directive : require
+
+#include "interface.h"
 
 layout(local_size_x_id = 0) in;
 // kFixedOps >= 0: the plan has that many ops (at most 4), of the kinds,
@@ -36,28 +39,6 @@ layout(constant_id = 13) const int kWhich3 = 0;
 #define REAL4 vec4
 #endif
 
-// Op kinds and flags (steps.cpp's ShaderOp and OpFlag).
-const int kUniform = 0;
-const int kGravityScaled = 1;
-const int kDrag = 2;
-const int kFriction = 3;
-const int kAttractor = 4;
-const int kEdgeForce = 5;
-const int kFan = 6;
-const int kLift = 7;
-const int kEverywhere = 1;
-const int kNeverReverse = 2;
-const int kPerStep = 4;
-// Boundary flags.
-const uint kBounce = 1u;
-const uint kWrap = 2u;
-const uint kUseRadius = 4u;
-const uint kBefore = 8u;
-const uint kLeft = 16u;
-const uint kRight = 32u;
-const uint kTop = 64u;
-const uint kBottom = 128u;
-
 layout(push_constant) uniform Push {
   uint n;
   uint groups;
@@ -75,89 +56,86 @@ layout(std430, binding = 0) buffer State { REAL4 state[]; };          // x, y, v
 layout(std430, binding = 1) buffer Accel { REAL2 accel[]; };          // applied by hand
 layout(std430, binding = 2) readonly buffer Props { REAL4 props[]; }; // 1/m, radius, mu, area
 layout(std430, binding = 3) readonly buffer OpInts { ivec4 op_ints[]; };  // kind, flags, law/edge, per-step
-layout(std430, binding = 4) readonly buffer OpReals { REAL op_reals[]; }; // 16 per op
+layout(std430, binding = 4) readonly buffer OpReals { REAL op_reals[]; }; // kSlots per op
 layout(std430, binding = 5) readonly buffer PerStep { REAL per_step[]; };
 layout(std430, binding = 6) buffer Bad { uint first_bad; };
 
-REAL prm(int op, int k) { return op_reals[16 * op + k]; }
-// An op's reals by their index in op_reals (steps.cpp's Slot; its encode
-// functions write them).
-const int P_FX = 0, P_FY = 1, P_C = 2, P_NORMAL = 3, P_XMIN = 4, P_XMAX = 5, P_YMIN = 6,
-          P_YMAX = 7, P_TOL = 8, P_PX = 9, P_PY = 10, P_GM = 11, P_LO = 12, P_HI = 13, P_EPS = 14,
-          P_REACH = 15;  // edge_force: its margin
+// An op's reals by their slot (interface.h; steps.cpp's encode functions
+// write them).
+REAL prm(int op, int k) { return op_reals[kSlots * op + k]; }
 
 // The acceleration of op `op` on a body (x, y, vx, vy), its properties q;
 // k: its kind, flags, law or edge, and per-step forces' offset.
 REAL2 op_accel(int op, ivec4 k, uint step, REAL4 b, REAL4 q) {
   const REAL inv_m = q.x;
-  if (k.x == kUniform) {
-    if ((k.y & kPerStep) != 0) {
+  if (k.x == kOpUniform) {
+    if ((k.y & kOpPerStep) != 0) {
       const uint at = uint(k.w) + 2u * step;
       return REAL2(per_step[at], per_step[at + 1u]) * inv_m;
     }
-    return REAL2(prm(op, P_FX), prm(op, P_FY)) * inv_m;
+    return REAL2(prm(op, kSlotFx), prm(op, kSlotFy)) * inv_m;
   }
-  if (k.x == kDrag || k.x == kFriction) {
+  if (k.x == kOpDrag || k.x == kOpFriction) {
     const REAL speed = sqrt(b.z * b.z + b.w * b.w);
     bool apply;
     REAL c;
-    if (k.x == kDrag) {
-      apply = (k.y & kEverywhere) != 0 ||
-              (b.x > prm(op, P_XMIN) && b.x < prm(op, P_XMAX) && b.y > prm(op, P_YMIN) &&
-               b.y < prm(op, P_YMAX));
-      c = prm(op, P_C) * q.w * speed * inv_m;
+    if (k.x == kOpDrag) {
+      apply = (k.y & kOpEverywhere) != 0 ||
+              (b.x > prm(op, kSlotXMin) && b.x < prm(op, kSlotXMax) && b.y > prm(op, kSlotYMin) &&
+               b.y < prm(op, kSlotYMax));
+      c = prm(op, kSlotC) * q.w * speed * inv_m;
     } else {
       const REAL r = q.y;
-      const REAL tol = prm(op, P_TOL);
-      apply = k.z == 0   ? b.x < r + tol
-              : k.z == 1 ? b.x > p.width - r - tol
-              : k.z == 2 ? b.y < r + tol
-                         : b.y > p.height - r - tol;
-      const REAL mu = q.z < REAL(0) ? prm(op, P_C) : q.z;  // -1: none of its own
-      c = speed != REAL(0) ? mu * prm(op, P_NORMAL) * inv_m / speed : REAL(0);
+      const REAL tol = prm(op, kSlotTolerance);
+      apply = k.z == kEdgeLeft    ? b.x < r + tol
+              : k.z == kEdgeRight ? b.x > p.width - r - tol
+              : k.z == kEdgeTop   ? b.y < r + tol
+                                  : b.y > p.height - r - tol;
+      const REAL mu = q.z < REAL(0) ? prm(op, kSlotC) : q.z;  // -1: none of its own
+      c = speed != REAL(0) ? mu * prm(op, kSlotNormal) * inv_m / speed : REAL(0);
     }
-    if ((k.y & kNeverReverse) != 0) c = min(c, REAL(1) / p.dt);
+    if ((k.y & kOpNeverReverse) != 0) c = min(c, REAL(1) / p.dt);
     return apply ? -c * b.zw : REAL2(0);
   }
-  if (k.x == kAttractor) {
-    const REAL2 r = REAL2(prm(op, P_PX), prm(op, P_PY)) - b.xy;
+  if (k.x == kOpAttractor) {
+    const REAL2 r = REAL2(prm(op, kSlotPx), prm(op, kSlotPy)) - b.xy;
     const REAL d_sq = dot(r, r);
     const REAL d = sqrt(d_sq);
     REAL den;
-    if (k.z == 0) {
-      const REAL dc = clamp(d, prm(op, P_LO), prm(op, P_HI));
+    if (k.z == kLawClampDistance) {
+      const REAL dc = clamp(d, prm(op, kSlotLo), prm(op, kSlotHi));
       den = dc * dc * d;
-    } else if (k.z == 1) {
-      den = clamp(d_sq, prm(op, P_LO), prm(op, P_HI)) * d;
+    } else if (k.z == kLawClampSquaredDistance) {
+      den = clamp(d_sq, prm(op, kSlotLo), prm(op, kSlotHi)) * d;
     } else {
-      const REAL eps = prm(op, P_EPS);
+      const REAL eps = prm(op, kSlotEps);
       const REAL s_sq = d_sq + eps * eps;
       den = s_sq * sqrt(s_sq);
     }
-    return d_sq == REAL(0) ? REAL2(0) : prm(op, P_GM) / den * r;
+    return d_sq == REAL(0) ? REAL2(0) : prm(op, kSlotGm) / den * r;
   }
-  if (k.x == kEdgeForce) {
-    const REAL margin = prm(op, P_REACH);
-    const REAL c = prm(op, P_C);
+  if (k.x == kOpEdgeForce) {
+    const REAL margin = prm(op, kSlotReach);
+    const REAL c = prm(op, kSlotC);
     const REAL4 d = REAL4(b.x, p.width - b.x, b.y, p.height - b.y);
     REAL4 push = c * (margin - d) / margin;
     push = mix(REAL4(0), push, lessThan(d, REAL4(margin)));
     return REAL2(push.x - push.y, push.z - push.w) * inv_m;
   }
-  if (k.x == kFan) {
-    const REAL2 away = b.xy - REAL2(prm(op, P_PX), prm(op, P_PY));
+  if (k.x == kOpFan) {
+    const REAL2 away = b.xy - REAL2(prm(op, kSlotPx), prm(op, kSlotPy));
     const REAL d = length(away);
-    const REAL reach = prm(op, P_REACH);
+    const REAL reach = prm(op, kSlotReach);
     if (!(d != REAL(0) && d < reach)) return REAL2(0);
-    return away * (REAL(1) / d) * (prm(op, P_C) * (REAL(1) - d / reach)) * inv_m;
+    return away * (REAL(1) / d) * (prm(op, kSlotC) * (REAL(1) - d / reach)) * inv_m;
   }
-  if (k.x == kLift) {
-    const REAL magnitude = prm(op, P_C) * (b.z * b.z + b.w * b.w);
+  if (k.x == kOpLift) {
+    const REAL magnitude = prm(op, kSlotC) * (b.z * b.z + b.w * b.w);
     const REAL len = sqrt(b.w * b.w + b.z * b.z);
     const REAL inv = REAL(1) / (len != REAL(0) ? len : REAL(1));
     return REAL2(b.w, -b.z) * inv * magnitude * inv_m;
   }
-  return REAL2(0);  // kGravityScaled: folded into (cx, cy)
+  return REAL2(0);  // kOpGravityScaled: folded into (cx, cy)
 }
 
 // One coordinate wrapped periodically into [lo, hi] (World's wrap_coordinate).
