@@ -176,8 +176,9 @@ void Scene::validate() const {
       world.integrator != Integrator::semi_implicit_euler) {
     throw Error(where + ": the sequential update order needs the semi_implicit_euler integrator");
   }
-  if (world.threads < 0) {
-    throw Error(where + ": threads must be >= 0 (got " + std::to_string(world.threads) + ")");
+  if (world.threads < 0 || world.threads > max_threads) {
+    throw Error(where + ": threads must be between 0 and " + std::to_string(max_threads) +
+                " (got " + std::to_string(world.threads) + ")");
   }
   validate_bodies(bodies, where);
   for (std::size_t k = 0; k < fields.size(); ++k) {
@@ -366,9 +367,9 @@ SimulationProgress Simulation::progress() const {
 
 void Simulation::restore_progress(const SimulationProgress& p) {
   const char* where = "Simulation::restore_progress";
-  if (p.frame < 0) {
-    throw InvalidArgument(std::string(where) + ": frame must be >= 0 (got " +
-                          std::to_string(p.frame) + ")");
+  if (p.frame < 0 || p.frame > max_frames) {
+    throw InvalidArgument(std::string(where) + ": frame must be between 0 and " +
+                          std::to_string(max_frames) + " (got " + std::to_string(p.frame) + ")");
   }
   for (const Vec2 v : {p.last_mouse, p.toss_offset}) {
     detail::require_finite(v.x, where, "mouse");
