@@ -94,15 +94,59 @@ namespace detail {
 
 std::string prefix(const std::string& who) { return who.empty() ? std::string() : who + ": "; }
 
+namespace {
+
+[[noreturn]] void refuse(const std::string& who, const std::string& path, const std::string& why) {
+  throw InputError(prefix(who) + "refusing to write " + quoted_path(path) + ": " + why);
+}
+
+[[noreturn]] void cannot(const std::string& who, const std::string& path, const std::string& why) {
+  throw InputError(prefix(who) + "cannot write " + quoted_path(path) + ": " + why);
+}
+
+// What the policy makes of a path that the kernel did not open for writing
+// (`error`): a FIFO without a reader, a folder, a write-protected file, a
+// new file (its folder must exist), a link to nothing.
+Probe probe_unopened(const std::string& who, const std::string& path, bool is_link, int error,
+                     bool open_direct) {
+  Probe p;
+  p.target = path;
+  if (error == ENXIO) {  // a FIFO without a reader yet
+    p.what = Probe::What::direct;
+    p.waits = true;
+    if (open_direct) {
+      p.fd = ::open(path.c_str(), O_WRONLY | O_NOCTTY | O_CLOEXEC);
+      if (p.fd < 0) cannot(who, path, system_message(errno));
+    }
+    return p;
+  }
+  if (error == EISDIR) {
+    p.what = Probe::What::folder;
+    (void)::stat(path.c_str(), &p.info);
+    return p;
+  }
+  struct stat info {};
+  if ((error == EACCES || error == EPERM) && ::stat(path.c_str(), &info) == 0 &&
+      S_ISREG(info.st_mode)) {
+    refuse(who, path,
+           "it is write-protected (the system refuses us write access, as the shell's > would)");
+  }
+  if (error != ENOENT) cannot(who, path, system_message(error));
+  if (is_link) refuse(who, path, "it is a symbolic link to a missing file");
+  struct stat folder {};
+  if (!folder_status(path, folder)) {
+    throw InputError(prefix(who) + shown_path(path) + ": cannot create the file: the folder " +
+                     quoted_path(directory_of(path)) + " does not exist");
+  }
+  if (!S_ISDIR(folder.st_mode)) cannot(who, path, "a folder above it is not a directory");
+  return p;
+}
+
+}  // namespace
+
 // Nothing is resolved by hand: the path is opened by the kernel, which
 // follows links with its own checks, and what it opened decides the rest.
 Probe probe(const std::string& who, const std::string& path, bool open_direct) {
-  const auto refuse = [&](const std::string& why) {
-    throw InputError(prefix(who) + "refusing to write " + quoted_path(path) + ": " + why);
-  };
-  const auto cannot = [&](const std::string& why) {
-    throw InputError(prefix(who) + "cannot write " + quoted_path(path) + ": " + why);
-  };
   if (path.empty() || path.back() == '/') {
     struct stat folder {};
     if (!path.empty() && ::stat(path.c_str(), &folder) == 0 && S_ISDIR(folder.st_mode)) {
@@ -115,7 +159,7 @@ Probe probe(const std::string& who, const std::string& path, bool open_direct) {
   const bool is_link = ::lstat(path.c_str(), &link) == 0 && S_ISLNK(link.st_mode);
   if (is_link) {
     const std::string why = foreign_owner_refusal(path);
-    if (!why.empty()) refuse(why);
+    if (!why.empty()) refuse(who, path, why);
   }
   // A FIFO is only looked at when not written now: opening and closing it
   // would end its reader's input.
@@ -129,52 +173,21 @@ Probe probe(const std::string& who, const std::string& path, bool open_direct) {
   // Opened for writing, never created and never truncated: the kernel says
   // whether we may write it (permissions, fs.protected_symlinks) and what it is.
   const int fd = ::open(path.c_str(), O_WRONLY | O_NONBLOCK | O_NOCTTY | O_CLOEXEC);
-  if (fd < 0) {
-    const int error = errno;
-    if (error == ENXIO) {  // a FIFO without a reader yet
-      p.what = Probe::What::direct;
-      p.waits = true;
-      p.target = path;
-      if (open_direct) {
-        p.fd = ::open(path.c_str(), O_WRONLY | O_NOCTTY | O_CLOEXEC);
-        if (p.fd < 0) cannot(system_message(errno));
-      }
-      return p;
-    }
-    if (error == EISDIR) {
-      p.what = Probe::What::folder;
-      p.target = path;
-      (void)::stat(path.c_str(), &p.info);
-      return p;
-    }
-    struct stat info {};
-    if ((error == EACCES || error == EPERM) && ::stat(path.c_str(), &info) == 0 &&
-        S_ISREG(info.st_mode)) {
-      refuse("it is write-protected (the system refuses us write access, as the shell's > would)");
-    }
-    if (error != ENOENT) cannot(system_message(error));
-    if (is_link) refuse("it is a symbolic link to a missing file");
-    struct stat folder {};
-    if (!folder_status(path, folder)) {
-      throw InputError(prefix(who) + shown_path(path) + ": cannot create the file: the folder " +
-                       quoted_path(directory_of(path)) + " does not exist");
-    }
-    if (!S_ISDIR(folder.st_mode)) cannot("a folder above it is not a directory");
-    p.target = path;
-    return p;
-  }
+  if (fd < 0) return probe_unopened(who, path, is_link, errno, open_direct);
   if (::fstat(fd, &p.info) != 0) {
     const int error = errno;
     ::close(fd);
-    cannot(system_message(error));
+    cannot(who, path, system_message(error));
   }
+  p.target = path;
   if (!S_ISREG(p.info.st_mode) || names_a_descriptor(path)) {
     if (S_ISBLK(p.info.st_mode)) {
       ::close(fd);
       throw InputError(prefix(who) + "refusing to write to the block device " + quoted_path(path));
     }
+    // A FIFO, a character device (/dev/null, a terminal), a socket, or a
+    // descriptor's file (/dev/stdout): written directly, in order.
     p.what = Probe::What::direct;
-    p.target = path;
     if (open_direct) {
       const int flags = ::fcntl(fd, F_GETFL);
       (void)::fcntl(fd, F_SETFL, (flags & ~O_NONBLOCK) | (S_ISREG(p.info.st_mode) ? O_APPEND : 0));
@@ -187,11 +200,12 @@ Probe probe(const std::string& who, const std::string& path, bool open_direct) {
   p.what = Probe::What::regular;
   p.target = is_link ? opened_path(fd) : path;
   ::close(fd);
-  if (p.target.empty()) refuse("the link can't be followed safely without /proc");
-  if ((p.info.st_mode & 0222) == 0)
-    refuse("it is write-protected (no write permission for anyone)");
+  if (p.target.empty()) refuse(who, path, "the link can't be followed safely without /proc");
+  if ((p.info.st_mode & 0222) == 0) {
+    refuse(who, path, "it is write-protected (no write permission for anyone)");
+  }
   const std::string why = foreign_owner_refusal(p.target);
-  if (!why.empty()) refuse(why);
+  if (!why.empty()) refuse(who, path, why);
   return p;
 }
 
