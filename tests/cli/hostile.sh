@@ -242,6 +242,17 @@ case "$case_name" in
     expect_error 2 "many.toml" "1000000 bodies" "--no-work-limit"
     expect_within 20000
     ;;
+  gpu_device_variable)
+    # An index that wraps to another device (2^32 is not device 0), a sign or
+    # a space: refused by name before anything runs.
+    expected="CALDER_GPU_DEVICE must be a device index"
+    run_calder devices
+    if grep -q "CALDER_WITH_GPU=OFF" out err; then expected="CALDER_WITH_GPU=OFF"; fi
+    for value in 4294967296 -1 ' 1' 1x; do
+      CALDER_GPU_DEVICE=$value run_calder run example-2.9 --frames 3 --device gpu
+      expect_error 2 "$expected"
+    done
+    ;;
   # --- signals and pipes: one handler ----------------------------------------------
   trajectory_signal)
     # With --trajectory FILE the run still stops by calder's one handler:
