@@ -2,6 +2,7 @@
 #include "calder/scene.hpp"
 
 #include <algorithm>
+#include <cstdint>
 #include <cmath>
 #include <string>
 #include <string_view>
@@ -155,9 +156,50 @@ void validate_input(const InputScript& input, const std::string& where) {
   }
 }
 
+// Whether `text` is well-formed UTF-8 (RFC 3629: no overlong forms, no
+// surrogates, nothing past U+10FFFF), as a scene file's text must be.
+bool valid_utf8(std::string_view text) {
+  std::size_t i = 0;
+  while (i < text.size()) {
+    const auto c = static_cast<unsigned char>(text[i]);
+    std::size_t extra = 0;
+    std::uint32_t code = 0;
+    std::uint32_t least = 0;
+    if (c < 0x80) {
+      ++i;
+      continue;
+    } else if ((c & 0xE0U) == 0xC0U) {
+      extra = 1, code = c & 0x1FU, least = 0x80;
+    } else if ((c & 0xF0U) == 0xE0U) {
+      extra = 2, code = c & 0x0FU, least = 0x800;
+    } else if ((c & 0xF8U) == 0xF0U) {
+      extra = 3, code = c & 0x07U, least = 0x10000;
+    } else {
+      return false;
+    }
+    if (text.size() - i <= extra) return false;
+    for (std::size_t k = 1; k <= extra; ++k) {
+      const auto d = static_cast<unsigned char>(text[i + k]);
+      if ((d & 0xC0U) != 0x80U) return false;
+      code = (code << 6U) | (d & 0x3FU);
+    }
+    if (code < least || code > 0x10FFFF || (code >= 0xD800 && code <= 0xDFFF)) return false;
+    i += extra + 1;
+  }
+  return true;
+}
+
 }  // namespace
 
 void Scene::validate() const {
+  // A snapshot's scene is read without a scene file's text checks: its
+  // texts must be what a scene file may hold.
+  for (const auto& [what, text] :
+       {std::pair{"name", &name}, std::pair{"description", &description}}) {
+    if (!valid_utf8(*text)) {
+      throw Error(std::string("scene: the ") + what + " is not valid UTF-8");
+    }
+  }
   const std::string where = "scene " + (name.empty() ? std::string("(unnamed)") : name);
   if (frames < 0 || frames > max_frames) {
     throw Error(where + ": frames must be between 0 and " + std::to_string(max_frames) + " (got " +

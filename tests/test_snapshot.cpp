@@ -407,6 +407,10 @@ TEST(SnapshotLimits, CountersAndThreadsAreCheckedAsAScenesAre) {
   calder::Scene scene = calder::builtin_scene("example-2.9");
   scene.world.threads = 100000;
   calder::test::expect_error([&] { scene.validate(); }, {"threads must be between 0 and 1024"});
+  // A scene file's text is UTF-8; a snapshot's scene is held to the same.
+  scene = calder::builtin_scene("example-2.9");
+  scene.description = "a\xA0hundred";
+  calder::test::expect_error([&] { scene.validate(); }, {"description is not valid UTF-8"});
   calder::WorldDef def;
   def.threads = 1025;
   calder::test::expect_error([&] { calder::World w(def); }, {"threads must be between 0 and 1024"});
