@@ -2,8 +2,8 @@
 #include "calder/scene.hpp"
 
 #include <algorithm>
-#include <cstdint>
 #include <cmath>
+#include <cstdint>
 #include <string>
 #include <string_view>
 #include <type_traits>
@@ -57,6 +57,13 @@ void validate_bodies(const std::vector<BodyGroup>& bodies, const std::string& wh
     require_draw(group.x, w, "x", false);
     require_draw(group.y, w, "y", false);
     require_draw(group.mass, w, "mass", true);
+    if (group.mass.kind == Draw::Kind::linear && group.count > 0) {
+      // start + i * step is monotonic in i: its ends are its extremes.
+      const double last = group.mass.value + static_cast<double>(group.count - 1) * group.mass.step;
+      if (!(group.mass.value > 0.0) || !(last > 0.0) || !std::isfinite(last)) {
+        throw Error(w + ": mass of the first or last body would be <= 0 (masses must be > 0)");
+      }
+    }
     require_draw(group.vx, w, "vx", false);
     require_draw(group.vy, w, "vy", false);
     if (group.layout == BodyGroup::Layout::orbit) {
@@ -217,6 +224,13 @@ void Scene::validate() const {
   if (world.update_order == UpdateOrder::sequential &&
       world.integrator != Integrator::semi_implicit_euler) {
     throw Error(where + ": the sequential update order needs the semi_implicit_euler integrator");
+  }
+  if (world.arithmetic != Arithmetic::book &&
+      (world.integrator != Integrator::semi_implicit_euler ||
+       world.update_order != UpdateOrder::simultaneous)) {
+    throw Error(where +
+                ": arithmetic other than book needs the semi_implicit_euler integrator and the "
+                "simultaneous update order");
   }
   if (world.threads < 0 || world.threads > max_threads) {
     throw Error(where + ": threads must be between 0 and " + std::to_string(max_threads) +

@@ -411,6 +411,13 @@ TEST(SnapshotLimits, CountersAndThreadsAreCheckedAsAScenesAre) {
   scene = calder::builtin_scene("example-2.9");
   scene.description = "a\xA0hundred";
   calder::test::expect_error([&] { scene.validate(); }, {"description is not valid UTF-8"});
+  // The rules a scene file's reader states are the scene's own.
+  scene = calder::builtin_scene("example-2.9");
+  scene.world.arithmetic = calder::Arithmetic::float64;
+  calder::test::expect_error([&] { scene.validate(); }, {"arithmetic other than book"});
+  scene = calder::builtin_scene("example-2.9");
+  scene.bodies[0].mass = calder::Draw::linear(1.0, -1.0);
+  calder::test::expect_error([&] { scene.validate(); }, {"masses must be > 0"});
   calder::WorldDef def;
   def.threads = 1025;
   calder::test::expect_error([&] { calder::World w(def); }, {"threads must be between 0 and 1024"});
