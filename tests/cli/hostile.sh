@@ -253,6 +253,15 @@ case "$case_name" in
       expect_error 2 "$expected"
     done
     ;;
+  gpu_too_many_bodies)
+    # Bodies that don't fit the device are refused before the run (exit 2),
+    # never a failure at frame 1 (exit 1); where they fit, the run succeeds.
+    printf 'name = "big"\nframes = 1\n[world]\narithmetic = "float64"\n[[bodies]]\n' > big.toml
+    printf 'count = 4500000\nx = { min = 0, max = 640 }\ny = { min = 0, max = 240 }\n' >> big.toml
+    printf 'mass = 1\n[[fields]]\ntype = "gravity"\n' >> big.toml
+    run_calder run big.toml --device gpu
+    if [ "$rc" != 0 ]; then expect_error 2 "--device gpu"; fi
+    ;;
   # --- signals and pipes: one handler ----------------------------------------------
   trajectory_signal)
     # With --trajectory FILE the run still stops by calder's one handler:
