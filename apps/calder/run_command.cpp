@@ -73,7 +73,7 @@ void check_bytes_written(const RunOptions& options, const PreparedInput& input,
   const double bytes = snapshots + trajectory;
   if (bytes <= max_run_bytes) return;
   char text[64];
-  std::snprintf(text, sizeof text, "about %.3g GB", bytes / 1e9);
+  std::snprintf(text, sizeof text, bytes < 100e9 ? "about %.1f GB" : "about %.0f GB", bytes / 1e9);
   throw InputError(
       detail::printable(input.source, 240) + ": this run would write " + text +
       (snapshots > trajectory ? " of snapshots (--archive, --save)" : " of trajectory") +

@@ -118,10 +118,11 @@ std::uint64_t snapshot_bytes_written(const SnapshotOptions& options, const Simul
                                      std::int64_t frames) {
   if (!options.save && !options.archive) return 0;
   // A snapshot is its body columns and a few kilobytes of the rest (the
-  // scene, fields, mouse): estimated, never built just to be measured.
+  // scene, fields, mouse; 8 KiB is generous): estimated, never built just
+  // to be measured.
   constexpr std::uint64_t columns = sizeof(BodyColumnsOf<char>);
   const std::uint64_t one =
-      columns * 8 * static_cast<std::uint64_t>(simulation.world().body_count()) + (64U << 10U);
+      columns * 8 * static_cast<std::uint64_t>(simulation.world().body_count()) + (8U << 10U);
   std::uint64_t count = options.save ? 1 : 0;
   if (options.archive) {
     const std::int64_t every = options.every ? parse_every(*options.every) : default_archive_every;
