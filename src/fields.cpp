@@ -9,6 +9,7 @@
 
 #include "calder/error.hpp"
 #include "calder/random.hpp"
+#include "calder/world.hpp"
 
 namespace calder {
 
@@ -241,6 +242,10 @@ void validate_value(T, Range, const std::string&, const char*) {}
 }  // namespace
 
 void FieldKind<MutualAttraction>::check(const MutualAttraction& f, const std::string& where) {
+  if (f.threads > max_threads) {
+    throw Error(where + ": threads must be at most " + std::to_string(max_threads) + " (got " +
+                std::to_string(f.threads) + ")");
+  }
   if (field_kind_detail::fast_method(f) && !f.law.inverse_square()) {
     throw Error(where +
                 ": the fast methods support the inverse-square law only (the book "

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <string>
 #include <string_view>
 #include <type_traits>
@@ -56,6 +57,13 @@ void validate_bodies(const std::vector<BodyGroup>& bodies, const std::string& wh
     require_draw(group.x, w, "x", false);
     require_draw(group.y, w, "y", false);
     require_draw(group.mass, w, "mass", true);
+    if (group.mass.kind == Draw::Kind::linear && group.count > 0) {
+      // start + i * step is monotonic in i: its ends are its extremes.
+      const double last = group.mass.value + static_cast<double>(group.count - 1) * group.mass.step;
+      if (!(group.mass.value > 0.0) || !(last > 0.0) || !std::isfinite(last)) {
+        throw Error(w + ": mass of the first or last body would be <= 0 (masses must be > 0)");
+      }
+    }
     require_draw(group.vx, w, "vx", false);
     require_draw(group.vy, w, "vy", false);
     if (group.layout == BodyGroup::Layout::orbit) {
@@ -155,9 +163,50 @@ void validate_input(const InputScript& input, const std::string& where) {
   }
 }
 
+// Whether `text` is well-formed UTF-8 (RFC 3629: no overlong forms, no
+// surrogates, nothing past U+10FFFF), as a scene file's text must be.
+bool valid_utf8(std::string_view text) {
+  std::size_t i = 0;
+  while (i < text.size()) {
+    const auto c = static_cast<unsigned char>(text[i]);
+    std::size_t extra = 0;
+    std::uint32_t code = 0;
+    std::uint32_t least = 0;
+    if (c < 0x80) {
+      ++i;
+      continue;
+    } else if ((c & 0xE0U) == 0xC0U) {
+      extra = 1, code = c & 0x1FU, least = 0x80;
+    } else if ((c & 0xF0U) == 0xE0U) {
+      extra = 2, code = c & 0x0FU, least = 0x800;
+    } else if ((c & 0xF8U) == 0xF0U) {
+      extra = 3, code = c & 0x07U, least = 0x10000;
+    } else {
+      return false;
+    }
+    if (text.size() - i <= extra) return false;
+    for (std::size_t k = 1; k <= extra; ++k) {
+      const auto d = static_cast<unsigned char>(text[i + k]);
+      if ((d & 0xC0U) != 0x80U) return false;
+      code = (code << 6U) | (d & 0x3FU);
+    }
+    if (code < least || code > 0x10FFFF || (code >= 0xD800 && code <= 0xDFFF)) return false;
+    i += extra + 1;
+  }
+  return true;
+}
+
 }  // namespace
 
 void Scene::validate() const {
+  // A snapshot's scene is read without a scene file's text checks: its
+  // texts must be what a scene file may hold.
+  for (const auto& [what, text] :
+       {std::pair{"name", &name}, std::pair{"description", &description}}) {
+    if (!valid_utf8(*text)) {
+      throw Error(std::string("scene: the ") + what + " is not valid UTF-8");
+    }
+  }
   const std::string where = "scene " + (name.empty() ? std::string("(unnamed)") : name);
   if (frames < 0 || frames > max_frames) {
     throw Error(where + ": frames must be between 0 and " + std::to_string(max_frames) + " (got " +
@@ -176,8 +225,16 @@ void Scene::validate() const {
       world.integrator != Integrator::semi_implicit_euler) {
     throw Error(where + ": the sequential update order needs the semi_implicit_euler integrator");
   }
-  if (world.threads < 0) {
-    throw Error(where + ": threads must be >= 0 (got " + std::to_string(world.threads) + ")");
+  if (world.arithmetic != Arithmetic::book &&
+      (world.integrator != Integrator::semi_implicit_euler ||
+       world.update_order != UpdateOrder::simultaneous)) {
+    throw Error(where +
+                ": arithmetic other than book needs the semi_implicit_euler integrator and the "
+                "simultaneous update order");
+  }
+  if (world.threads < 0 || world.threads > max_threads) {
+    throw Error(where + ": threads must be between 0 and " + std::to_string(max_threads) +
+                " (got " + std::to_string(world.threads) + ")");
   }
   validate_bodies(bodies, where);
   for (std::size_t k = 0; k < fields.size(); ++k) {
@@ -366,9 +423,9 @@ SimulationProgress Simulation::progress() const {
 
 void Simulation::restore_progress(const SimulationProgress& p) {
   const char* where = "Simulation::restore_progress";
-  if (p.frame < 0) {
-    throw InvalidArgument(std::string(where) + ": frame must be >= 0 (got " +
-                          std::to_string(p.frame) + ")");
+  if (p.frame < 0 || p.frame > max_frames) {
+    throw InvalidArgument(std::string(where) + ": frame must be between 0 and " +
+                          std::to_string(max_frames) + " (got " + std::to_string(p.frame) + ")");
   }
   for (const Vec2 v : {p.last_mouse, p.toss_offset}) {
     detail::require_finite(v.x, where, "mouse");

@@ -158,49 +158,34 @@ In Sections::open(const std::string& tag) const {
 
 // --- snapshot files ---
 
-Bytes read_file_bytes(const std::string& path) {
+Bytes read_file_bytes(const std::string& path, std::uint64_t max_bytes) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(named(path) + ": can't open: " + errno_text());
-  Bytes bytes;
-  std::array<char, 65536> buffer{};
-  while (in.read(buffer.data(), buffer.size()) || in.gcount() > 0) {
-    bytes.insert(bytes.end(), buffer.begin(), buffer.begin() + in.gcount());
+  // The length first: nothing is allocated for a file larger than the limit,
+  // and the buffer is allocated once.
+  in.seekg(0, std::ios::end);
+  const std::streamoff end = in.tellg();
+  in.seekg(0, std::ios::beg);
+  if (end < 0 || !in) throw InputError(named(path) + ": can't read: not a regular file");
+  const auto length = static_cast<std::uint64_t>(end);
+  if (length > max_bytes) {
+    throw InputError(named(path) + ": " + std::to_string(length) + " bytes, larger than the " +
+                     std::to_string(max_bytes) + " bytes a snapshot may have (corrupted?)");
   }
-  if (in.bad()) throw InputError(named(path) + ": read failed");
+  Bytes bytes(static_cast<std::size_t>(length));
+  in.read(reinterpret_cast<char*>(bytes.data()), static_cast<std::streamsize>(length));
+  if (static_cast<std::uint64_t>(std::max<std::streamsize>(in.gcount(), 0)) != length) {
+    throw InputError(named(path) + ": read failed (the file changed while it was read?)");
+  }
   return bytes;
 }
 
-namespace {
-
-// The bytes to a temporary file beside path, renamed over it when complete.
-void write_whole(const Bytes& bytes, const std::string& path) {
-  const std::string temporary = path + ".tmp-calder";
-  {
-    std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
-    if (!out) throw RunError(named(path) + ": can't create: " + errno_text());
-    out.write(reinterpret_cast<const char*>(bytes.data()),
-              static_cast<std::streamsize>(bytes.size()));
-    out.flush();
-    if (!out) {
-      std::remove(temporary.c_str());
-      throw RunError(named(path) + ": write failed: " + errno_text());
-    }
-  }
-  if (std::rename(temporary.c_str(), path.c_str()) != 0) {
-    const std::string why = errno_text();
-    std::remove(temporary.c_str());
-    throw RunError(named(path) + ": can't rename the temporary file over it: " + why);
-  }
-}
-
-}  // namespace
-
 void save_snapshot(const Simulation& simulation, const std::string& path) {
-  write_whole(to_snapshot(simulation), path);
+  output::write_file("", path, to_snapshot(simulation));
 }
 
 void save_snapshot(const World& world, const std::string& path) {
-  write_whole(to_snapshot(world), path);
+  output::write_file("", path, to_snapshot(world));
 }
 
 Simulation load_simulation(const std::string& path) {
@@ -214,13 +199,19 @@ World load_world(const std::string& path) {
 // --- archives ---
 
 ArchiveWriter::ArchiveWriter(const std::string& path)
-    : path_(path), out_(path, std::ios::binary | std::ios::trunc) {
-  if (!out_) throw RunError(named(path) + ": can't create the archive: " + errno_text());
-  Out header;
-  for (const char c : kArchiveMagic) header.u8(static_cast<std::uint8_t>(c));
-  header.u32(kSnapshotVersion);
-  header.u32(0);
-  write(header.bytes);
+    : path_(path), file_(std::make_unique<output::AppendFile>("", path)) {
+  offset_ = kHeaderBytes;
+  if (file_->original_size() == 0) return;  // a new (or empty) file: header first
+  const Bytes head = file_->read_at(0, kHeaderBytes);
+  if (!looks_like_archive(head)) {
+    throw InputError(named(path) +
+                     ": not a calder archive (no CALDARCH at its start); "
+                     "refusing to append to it");
+  }
+  // Its records, as a reader finds them (the index, or the headers' scan).
+  const ArchiveReader existing(path);
+  for (const ArchiveReader::Record& r : existing.records_) index_.push_back({r.frame, r.offset});
+  offset_ = existing.records_end_;
 }
 
 ArchiveWriter::~ArchiveWriter() {
@@ -230,11 +221,27 @@ ArchiveWriter::~ArchiveWriter() {
   }
 }
 
+std::optional<std::int64_t> ArchiveWriter::last_frame() const {
+  if (index_.empty()) return std::nullopt;
+  return index_.back().frame;
+}
+
 void ArchiveWriter::write(const Bytes& bytes) {
-  out_.write(reinterpret_cast<const char*>(bytes.data()),
-             static_cast<std::streamsize>(bytes.size()));
-  out_.flush();
-  if (!out_) throw RunError(named(path_) + ": archive write failed: " + errno_text());
+  if (!started_) {
+    started_ = true;
+    if (file_->original_size() == 0) {
+      Out header;
+      for (const char c : kArchiveMagic) header.u8(static_cast<std::uint8_t>(c));
+      header.u32(kSnapshotVersion);
+      header.u32(0);
+      file_->append(header.bytes);
+    } else {
+      // The old index and trailer (or a torn last record) give way to the
+      // new records; abandon() puts them back.
+      file_->cut_to(offset_);
+    }
+  }
+  file_->append(bytes);
   offset_ += bytes.size();
 }
 
@@ -265,6 +272,11 @@ void ArchiveWriter::append(const Simulation& simulation) {
 void ArchiveWriter::close() {
   if (closed_) return;
   closed_ = true;
+  if (!started_ && file_->original_size() != 0) {  // nothing appended: left as it was
+    file_->keep();
+    file_.reset();
+    return;
+  }
   Out index;
   index.u64(index_.size());
   for (const Entry& e : index_) {
@@ -278,7 +290,15 @@ void ArchiveWriter::close() {
   for (const char c : kArchiveEnd) end.u8(static_cast<std::uint8_t>(c));
   tail.insert(tail.end(), end.bytes.begin(), end.bytes.end());
   write(tail);
-  out_.close();
+  file_->sync();
+  file_->keep();
+  file_.reset();
+}
+
+void ArchiveWriter::abandon() noexcept {
+  if (closed_) return;
+  closed_ = true;
+  file_.reset();  // not kept: put back as it was
 }
 
 namespace {
@@ -299,6 +319,26 @@ struct RecordHeader {
   std::int64_t frame = 0;
   std::uint64_t length = 0;
 };
+
+// Whether a record's header can be one calder wrote: a snapshot no larger
+// than max_snapshot_bytes, of a frame in 0..max_frames.
+bool plausible(const RecordHeader& h) {
+  return h.tag == "SNAP" && h.length <= max_snapshot_bytes && h.frame >= 0 && h.frame <= max_frames;
+}
+
+// The CRC-32 of n bytes at offset, read a MiB at a time (nullopt: the file
+// ends first).
+std::optional<std::uint32_t> crc_at(std::ifstream& in, std::uint64_t offset, std::uint64_t n) {
+  constexpr std::uint64_t kChunk = std::uint64_t{1} << 20;
+  std::uint32_t crc = 0;
+  for (std::uint64_t done = 0; done < n;) {
+    const Bytes part = read_at(in, offset + done, std::min(kChunk, n - done));
+    if (part.empty()) return std::nullopt;
+    crc = crc32(part, crc);
+    done += part.size();
+  }
+  return crc;
+}
 
 RecordHeader parse_record(const Bytes& bytes, const std::string& where) {
   In in(bytes, where);
@@ -341,6 +381,8 @@ bool ArchiveReader::read_index(std::ifstream& in, std::uint64_t size) {
   if (at < kHeaderBytes || at > size - 16 - kRecordBytes) return false;
   const RecordHeader h = parse_record(read_at(in, at, kRecordBytes), path_);
   if (h.tag != "INDX" || padded(h.length) != size - 16 - at - kRecordBytes) return false;
+  // No more entries than records fit before it: nothing larger is allocated.
+  if (h.length > 8 + 16 * (at / kRecordBytes)) return false;
   const Bytes payload = read_at(in, at + kRecordBytes, h.length);
   if (payload.size() != h.length || crc32(payload) != h.crc) return false;
   In index(payload, named(path_) + ": index");
@@ -352,10 +394,11 @@ bool ArchiveReader::read_index(std::ifstream& in, std::uint64_t size) {
     const std::uint64_t offset = index.u64();
     if (offset < kHeaderBytes || offset + kRecordBytes > at) return false;
     const RecordHeader r = parse_record(read_at(in, offset, kRecordBytes), path_);
-    if (r.tag != "SNAP" || r.frame != frame || offset + kRecordBytes + r.length > at) return false;
+    if (!plausible(r) || r.frame != frame || offset + kRecordBytes + r.length > at) return false;
     records.push_back({frame, offset, r.length});
   }
   records_ = std::move(records);
+  records_end_ = at;
   return true;
 }
 
@@ -365,7 +408,7 @@ void ArchiveReader::scan(std::ifstream& in, std::uint64_t size) {
   std::optional<std::uint32_t> last_crc;
   while (size - at >= kRecordBytes) {
     const RecordHeader h = parse_record(read_at(in, at, kRecordBytes), path_);
-    if (h.tag != "SNAP" || h.length > size - at - kRecordBytes) break;
+    if (!plausible(h) || h.length > size - at - kRecordBytes) break;
     records_.push_back({h.frame, at, h.length});
     last_crc = h.crc;
     at += kRecordBytes + padded(h.length);
@@ -375,9 +418,11 @@ void ArchiveReader::scan(std::ifstream& in, std::uint64_t size) {
   // to the disk before all its bytes: keep it only when its checksum holds.
   if (!records_.empty()) {
     const Record& last = records_.back();
-    const Bytes payload = read_at(in, last.offset + kRecordBytes, last.length);
-    if (payload.size() != last.length || crc32(payload) != *last_crc) records_.pop_back();
+    if (crc_at(in, last.offset + kRecordBytes, last.length) != last_crc) records_.pop_back();
   }
+  records_end_ = records_.empty()
+                     ? kHeaderBytes
+                     : records_.back().offset + kRecordBytes + padded(records_.back().length);
 }
 
 std::int64_t ArchiveReader::frame(std::size_t i) const {

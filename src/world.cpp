@@ -54,8 +54,9 @@ World::World(const WorldDef& def) : def_(def), random_(def.seed), noise_(def.see
   detail::require_positive(def.dt, "World", "dt");
   def.boundary.validate("World");
   detail::require_non_negative(def.max_speed, "World", "max_speed");
-  if (def.threads < 0) {
-    throw InvalidArgument("World: threads must be >= 0 (got " + std::to_string(def.threads) + ")");
+  if (def.threads < 0 || def.threads > max_threads) {
+    throw InvalidArgument("World: threads must be between 0 and " + std::to_string(max_threads) +
+                          " (got " + std::to_string(def.threads) + ")");
   }
 }
 
@@ -363,8 +364,8 @@ BodyView World::bodies() const {
 void World::restore(double time, std::int64_t step_count, std::span<const double> ax,
                     std::span<const double> ay) {
   detail::require_finite(time, "World::restore", "time");
-  if (step_count < 0) {
-    throw InvalidArgument("World::restore: step_count must be >= 0 (got " +
+  if (step_count < 0 || step_count > max_step_count) {
+    throw InvalidArgument("World::restore: step_count must be between 0 and 2^53 (got " +
                           std::to_string(step_count) + ")");
   }
   if (ax.size() != body_count() || ay.size() != body_count()) {
@@ -431,9 +432,9 @@ Field& World::field(std::size_t index) {
 }
 
 void World::set_threads(int threads) {
-  if (threads < 0) {
-    throw InvalidArgument("World::set_threads: threads must be >= 0 (got " +
-                          std::to_string(threads) + ")");
+  if (threads < 0 || threads > max_threads) {
+    throw InvalidArgument("World::set_threads: threads must be between 0 and " +
+                          std::to_string(max_threads) + " (got " + std::to_string(threads) + ")");
   }
   def_.threads = threads;
 }

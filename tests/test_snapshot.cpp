@@ -11,6 +11,7 @@
 #include <cstdio>
 #include <cstring>
 #include <fstream>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -339,6 +340,87 @@ TEST(SnapshotArchive, ACutArchiveReadsUpToItsLastCompleteSnapshot) {
   calder::test::expect_error([&] { (void)calder::ArchiveReader{cut}; }, {"not a calder archive"});
   std::remove(path.c_str());
   std::remove(cut.c_str());
+}
+
+TEST(SnapshotArchive, AppendsAfterItsLastSnapshotAndAFailedRunLeavesItAsItWas) {
+  const std::string path = temp_path("append.archive");
+  std::remove(path.c_str());
+  Simulation sim(calder::builtin_scene("example-2.1"), 1);
+  {
+    calder::ArchiveWriter archive(path);
+    archive.append(sim);
+    step(sim, 3);
+    archive.append(sim);
+  }
+  const Bytes first = calder::read_file_bytes(path);
+  {
+    // Abandoned after appending (a run that failed): byte for byte as it was.
+    calder::ArchiveWriter archive(path);
+    EXPECT_EQ(archive.size(), 2U);
+    EXPECT_EQ(archive.last_frame(), std::optional<std::int64_t>(3));
+    step(sim, 3);
+    archive.append(sim);
+    archive.abandon();
+  }
+  EXPECT_EQ(calder::read_file_bytes(path), first);
+  {
+    calder::ArchiveWriter archive(path);
+    // A second writer of the same file is refused while the first holds it.
+    calder::test::expect_error([&] { calder::ArchiveWriter again(path); },
+                               {"append.archive", "locked"});
+    archive.append(sim);
+  }
+  const calder::ArchiveReader reader(path);
+  EXPECT_TRUE(reader.complete());
+  EXPECT_EQ(reader.frames(), (std::vector<std::int64_t>{0, 3, 6}));
+  expect_same_state(sim, reader.simulation(2), "appended");
+  // A torn last record (a killed run) gives way to the next run's.
+  Bytes torn = calder::read_file_bytes(path);
+  torn.resize(torn.size() - 100);
+  write_bytes(path, torn);
+  {
+    calder::ArchiveWriter archive(path);
+    EXPECT_EQ(archive.size(), 2U);
+    step(sim, 3);
+    archive.append(sim);
+  }
+  EXPECT_EQ(calder::ArchiveReader(path).frames(), (std::vector<std::int64_t>{0, 3, 9}));
+  // A file that is not an archive is refused and left alone; a new archive
+  // that a run abandons is removed.
+  write_bytes(path, Bytes{'n', 'o', 't', 'e', 's'});
+  calder::test::expect_error([&] { calder::ArchiveWriter w(path); }, {"not a calder archive"});
+  EXPECT_EQ(calder::read_file_bytes(path), (Bytes{'n', 'o', 't', 'e', 's'}));
+  std::remove(path.c_str());
+  {
+    calder::ArchiveWriter archive(path);
+    archive.append(sim);
+    archive.abandon();
+  }
+  EXPECT_FALSE(std::ifstream(path).good());
+}
+
+TEST(SnapshotLimits, CountersAndThreadsAreCheckedAsAScenesAre) {
+  Simulation sim(calder::builtin_scene("example-2.9"), 1);
+  calder::SimulationProgress progress = sim.progress();
+  progress.frame = std::numeric_limits<std::int64_t>::max() - 1;
+  calder::test::expect_error([&] { sim.restore_progress(progress); }, {"frame must be between"});
+  calder::Scene scene = calder::builtin_scene("example-2.9");
+  scene.world.threads = 100000;
+  calder::test::expect_error([&] { scene.validate(); }, {"threads must be between 0 and 1024"});
+  // A scene file's text is UTF-8; a snapshot's scene is held to the same.
+  scene = calder::builtin_scene("example-2.9");
+  scene.description = "a\xA0hundred";
+  calder::test::expect_error([&] { scene.validate(); }, {"description is not valid UTF-8"});
+  // The rules a scene file's reader states are the scene's own.
+  scene = calder::builtin_scene("example-2.9");
+  scene.world.arithmetic = calder::Arithmetic::float64;
+  calder::test::expect_error([&] { scene.validate(); }, {"arithmetic other than book"});
+  scene = calder::builtin_scene("example-2.9");
+  scene.bodies[0].mass = calder::Draw::linear(1.0, -1.0);
+  calder::test::expect_error([&] { scene.validate(); }, {"masses must be > 0"});
+  calder::WorldDef def;
+  def.threads = 1025;
+  calder::test::expect_error([&] { calder::World w(def); }, {"threads must be between 0 and 1024"});
 }
 
 }  // namespace

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "calder/error.hpp"
+#include "run_options.hpp"
 
 #if defined(CALDER_APP_HAS_GPU)
 #include "calder/gpu.hpp"
@@ -68,6 +69,39 @@ void add_device_option(CLI::App& command, std::optional<std::string>& device) {
       ->type_name("cpu|gpu|gpu:N");
 }
 
+#if defined(CALDER_APP_HAS_GPU)
+namespace {
+
+// The bodies must fit the device before the run, not fail at its first
+// frame: the largest buffer holds 4 numbers a body (x, y, vx, vy), all of
+// them 10 (with the accelerations and the bodies' properties), and the
+// upload stages as much again in host-visible memory. A scene that resets
+// may rebuild more bodies than it starts with (budget_bodies).
+void check_device_memory(const std::string& device, const Simulation& simulation,
+                         const gpu::DeviceInfo& info) {
+  const double n =
+      static_cast<double>(budget_bodies(simulation.scene(), simulation.world().body_count()));
+  const double real = simulation.world().arithmetic() == Arithmetic::float32 ? 4.0 : 8.0;
+  const double largest = 4.0 * n * real;
+  const double total = 2.0 * 10.0 * n * real;
+  const auto refuse = [&](const char* what, double need, double have) {
+    char text[160];
+    std::snprintf(text, sizeof text, "%.0f bodies need %s of %.3g MB, the device has %.3g MB", n,
+                  what, need / 1e6, have / 1e6);
+    throw InputError("--device " + device + ": " + text + " (" + info.name +
+                     "); use fewer bodies or the CPU");
+  };
+  if (info.max_buffer_bytes != 0 && largest > static_cast<double>(info.max_buffer_bytes)) {
+    refuse("a buffer", largest, static_cast<double>(info.max_buffer_bytes));
+  }
+  if (info.memory_bytes != 0 && total > static_cast<double>(info.memory_bytes)) {
+    refuse("memory", total, static_cast<double>(info.memory_bytes));
+  }
+}
+
+}  // namespace
+#endif
+
 void use_device(const std::optional<std::string>& device, Simulation& simulation) {
   if (!device) return;
   const std::optional<int> index = gpu_index(*device);
@@ -83,6 +117,7 @@ void use_device(const std::optional<std::string>& device, Simulation& simulation
     throw InputError("--device " + *device + ": " + why + " (scene " + simulation.scene().name +
                      ")");
   }
+  check_device_memory(*device, simulation, gpu::installed()->info());
 #else
   (void)simulation;
   throw InputError("--device " + *device +

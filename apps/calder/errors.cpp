@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "errors.hpp"
 
+#include <cerrno>
 #include <csignal>
 #include <exception>
 #include <new>
@@ -36,7 +37,11 @@ int run_cli(std::string_view program, std::ostream& out, std::ostream& err,
   try {
     command();
     out.flush();
-    if (!out) return report(err, program, "standard output: write failed", exit_failure);
+    if (!out) {
+      // The reader of a pipe went away: the end it asked for, not an error.
+      if (errno == EPIPE || output::InterruptScope::signal() == SIGPIPE) return 128 + SIGPIPE;
+      return report(err, program, "standard output: write failed", exit_failure);
+    }
     return exit_success;
   } catch (const Interrupted& e) {
     // The reader of a pipe went away (`calder run ... | head`): nothing to report.

@@ -1,19 +1,9 @@
 // SPDX-License-Identifier: MIT
 #include "output_file.hpp"
 
-#include <fcntl.h>
-#include <sys/stat.h>
-#include <unistd.h>
-
-#include <atomic>
 #include <cerrno>
 #include <csignal>
-#include <cstdio>
-#include <cstring>
-#include <filesystem>
 #include <iostream>
-#include <mutex>
-#include <system_error>
 #include <utility>
 
 #include <calder/error.hpp>
@@ -24,68 +14,13 @@
 
 namespace calder::app {
 
-namespace {
-
-// The temporary that exists now, for the signal handler (one at a time).
-constexpr std::size_t kMaxPath = 4096;
-char g_temp_path[kMaxPath] = {};
-std::atomic<bool> g_has_temp{false};
-
-extern "C" void remove_temp_and_reraise(int signal_number) {
-  if (g_has_temp.load()) ::unlink(g_temp_path);
-  std::signal(signal_number, SIG_DFL);
-  std::raise(signal_number);
-}
-
-// Every terminating signal that was not ignored at start removes the
-// temporary and ends the process by that signal (the shell sees 128 + it).
-void watch_signals(const std::string& temp) {
-  if (temp.size() >= kMaxPath) return;
-  std::memcpy(g_temp_path, temp.c_str(), temp.size() + 1);
-  g_has_temp.store(true);
-  for (const int signal_number : terminating_signals) {
-    struct sigaction old {};
-    ::sigaction(signal_number, nullptr, &old);
-    if (old.sa_handler != SIG_IGN) std::signal(signal_number, remove_temp_and_reraise);
-  }
-}
-
-void unwatch_signals() {
-  g_has_temp.store(false);
-  for (const int signal_number : terminating_signals) {
-    struct sigaction old {};
-    ::sigaction(signal_number, nullptr, &old);
-    if (old.sa_handler == remove_temp_and_reraise) std::signal(signal_number, SIG_DFL);
-  }
-}
-
-}  // namespace
-
 OutputFile::OutputFile(std::string path) : path_(std::move(path)) {
   if (path_.empty()) throw InputError("output path is empty");
   if (is_stdout()) return;
 
-  std::error_code ec;
-  if (std::filesystem::is_directory(path_, ec)) {
-    throw InputError(shown_path(path_) + ": is a directory, not a file");
-  }
-  const std::filesystem::path target(path_);
-  const std::filesystem::path directory =
-      target.has_parent_path() ? target.parent_path() : std::filesystem::path(".");
-  if (!std::filesystem::is_directory(directory, ec)) {
-    throw InputError(shown_path(path_) + ": cannot create the file: directory '" +
-                     shown_path(directory.string()) + "' does not exist");
-  }
-  {
-    // A path that can't be created, or that the output policy refuses: bad
-    // input (exit 2). Registered for the interrupt watchdog as it is made.
-    const std::lock_guard<std::mutex> lock(temporaries_lock());
-    file_.emplace("", path_);
-    if (!file_->temp_path().empty()) {
-      temporary_id_ = register_temporary(file_->temp_path(), false);
-    }
-  }
-  if (!file_->temp_path().empty()) watch_signals(file_->temp_path());
+  // A path that can't be created, or that the output policy refuses: bad
+  // input (exit 2). The temporary is registered for the signal handler.
+  file_.emplace("", path_);
   buffer_ = std::make_unique<Buffer>(*file_);
   out_ = std::make_unique<std::ostream>(buffer_.get());
 }
@@ -116,8 +51,6 @@ void OutputFile::commit() {
     throw RunError(e.what());
   }
   committed_ = true;
-  unwatch_signals();
-  if (temporary_id_ != 0) unregister_temporary(std::exchange(temporary_id_, 0));
 }
 
 std::string OutputFile::write_error() const {
@@ -126,8 +59,17 @@ std::string OutputFile::write_error() const {
   return "cannot write '" + detail::printable(path_, 240) + "'";
 }
 
+void check_standard_output(const std::ostream& out) {
+  if (out) return;
+  // The reader went away (`calder run ... | head`): the run ends as if by
+  // SIGPIPE, quietly, whether the signal was caught or ignored.
+  if (errno == EPIPE || output::InterruptScope::signal() == SIGPIPE) throw Interrupted(SIGPIPE);
+  throw RunError("standard output: write failed");
+}
+
 void OutputFile::check_stream(const std::ostream& s) {
   if (s) return;
+  if (is_stdout()) check_standard_output(s);
   const std::string error = write_error();
   discard();
   throw RunError(error);
@@ -137,11 +79,9 @@ void OutputFile::discard() noexcept {
   if (!file_) return;
   file_->discard();
   file_.reset();
-  unwatch_signals();
-  if (temporary_id_ != 0) unregister_temporary(std::exchange(temporary_id_, 0));
 }
 
-OutputFile::Buffer::Buffer(calder::OutputFile& file) : file_(&file), data_(std::size_t{1} << 16) {
+OutputFile::Buffer::Buffer(output::AtomicFile& file) : file_(&file), data_(std::size_t{1} << 16) {
   setp(data_.data(), data_.data() + data_.size());
 }
 

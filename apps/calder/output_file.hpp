@@ -1,18 +1,16 @@
 // SPDX-License-Identifier: MIT
 // calder command: an output file that appears whole or not at all.
 //
-// calder::OutputFile decides how, by the output policy (calder/output_file.hpp,
-// apps/README.md "Output files"): a new or regular file is written to a
-// temporary in its folder, renamed over it only by commit(), after everything
-// was written and flushed; a link is followed by the kernel; a FIFO or a
-// device is written directly; what the policy protects is refused (exit 2).
-// If commit() is never reached (an error, an exception) the destructor
-// removes the temporary; so does every terminating signal while one exists
-// (progress.hpp, and its watchdog). The target is never left half written.
-// The path "-" means standard output.
+// A buffered std::ostream onto output::AtomicFile (calder/output.hpp), which
+// decides how by the output policy (apps/README.md "Output files"): a new or
+// regular file is written to a temporary in its folder, renamed over it only
+// by commit(); a FIFO or a device is written directly; what the policy
+// protects is refused (exit 2). Without commit() (an error, an exception) the
+// temporary is removed; on a terminating signal the output module's handler
+// removes it. The path "-" means standard output.
 #pragma once
 
-#include <calder/output_file.hpp>
+#include <calder/output.hpp>
 #include <memory>
 #include <optional>
 #include <ostream>
@@ -21,6 +19,10 @@
 #include <vector>
 
 namespace calder::app {
+
+// Throws when a write to standard output failed: Interrupted(SIGPIPE) when
+// its reader went away (exit 141, no message), else RunError.
+void check_standard_output(const std::ostream& out);
 
 class OutputFile {
  public:
@@ -52,7 +54,7 @@ class OutputFile {
   // sets badbit and keeps its error for commit().
   class Buffer : public std::streambuf {
    public:
-    explicit Buffer(calder::OutputFile& file);
+    explicit Buffer(output::AtomicFile& file);
     bool flush_all();
     [[nodiscard]] const std::string& error() const { return error_; }
 
@@ -61,7 +63,7 @@ class OutputFile {
     int sync() override;
 
    private:
-    calder::OutputFile* file_;
+    output::AtomicFile* file_;
     std::vector<char> data_;
     std::string error_;
   };
@@ -69,10 +71,9 @@ class OutputFile {
   void discard() noexcept;
 
   std::string path_;
-  std::optional<calder::OutputFile> file_;  // the atomic file itself (calder::render)
+  std::optional<output::AtomicFile> file_;
   std::unique_ptr<Buffer> buffer_;
   std::unique_ptr<std::ostream> out_;
-  std::size_t temporary_id_ = 0;  // registered with the interrupt watchdog
   bool committed_ = false;
 };
 

@@ -1,19 +1,12 @@
 // SPDX-License-Identifier: MIT
 #include "progress.hpp"
 
-#include <semaphore.h>
 #include <unistd.h>
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
-#include <csignal>
 #include <cstdio>
-#include <filesystem>
-#include <system_error>
-#include <thread>
 #include <utility>
-#include <vector>
 
 namespace calder::app {
 
@@ -23,38 +16,6 @@ namespace {
 constexpr double kShowAfterSeconds = 0.3;
 constexpr double kRedrawSeconds = 0.1;
 constexpr int kBarWidth = 24;
-
-volatile std::sig_atomic_t g_signal = 0;
-// Posted by the handler (sem_post is async-signal-safe), waited on by the watchdog.
-sem_t g_signal_posted;
-std::once_flag g_semaphore_made;
-
-extern "C" void note_signal(int signal_number) {
-  g_signal = signal_number;
-  ::sem_post(&g_signal_posted);
-}
-
-struct Temporary {
-  std::size_t id;
-  std::string path;
-  bool folder;
-};
-
-std::mutex g_temporaries_mutex;
-std::vector<Temporary> g_temporaries;  // guarded by g_temporaries_mutex
-std::size_t g_next_temporary = 1;
-
-// Removes every registered temporary; the caller holds the lock.
-void remove_temporaries() {
-  for (const Temporary& t : g_temporaries) {
-    std::error_code ec;
-    if (t.folder) {
-      std::filesystem::remove_all(t.path, ec);
-    } else {
-      ::unlink(t.path.c_str());
-    }
-  }
-}
 
 std::string duration_text(double seconds) {
   const auto s = static_cast<long long>(std::lround(seconds));
@@ -130,90 +91,6 @@ void Progress::finish() {
   err_ << '\r' << std::string(width_, ' ') << '\r';
   err_.flush();
   shown_ = false;
-}
-
-std::mutex& temporaries_lock() { return g_temporaries_mutex; }
-
-std::size_t register_temporary(const std::string& path, bool folder) {
-  // The caller holds temporaries_lock() (a std::mutex is not recursive).
-  const std::size_t id = g_next_temporary++;
-  g_temporaries.push_back({id, path, folder});
-  return id;
-}
-
-void unregister_temporary(std::size_t id) {
-  const std::lock_guard<std::mutex> lock(g_temporaries_mutex);
-  unregister_temporary_locked(id);
-}
-
-void unregister_temporary_locked(std::size_t id) {
-  std::erase_if(g_temporaries, [id](const Temporary& t) { return t.id == id; });
-}
-
-// Waits for a signal; if the job has not stopped interrupt_grace_ms later,
-// cleans up and ends the process itself.
-struct InterruptGuard::Watchdog {
-  std::atomic<bool> stop{false};
-  std::thread thread;
-
-  Watchdog() {
-    thread = std::thread([this] { watch(); });
-  }
-  ~Watchdog() {
-    stop.store(true);
-    ::sem_post(&g_signal_posted);
-    thread.join();
-  }
-  Watchdog(const Watchdog&) = delete;
-  Watchdog& operator=(const Watchdog&) = delete;
-
-  void watch() {
-    while (::sem_wait(&g_signal_posted) != 0) {
-    }
-    if (stop.load()) return;
-    const auto deadline =
-        std::chrono::steady_clock::now() + std::chrono::milliseconds(interrupt_grace_ms);
-    while (!stop.load() && std::chrono::steady_clock::now() < deadline) {
-      std::this_thread::sleep_for(std::chrono::milliseconds(10));
-    }
-    if (stop.load()) return;
-    const int signal_number = g_signal;
-    g_temporaries_mutex.lock();  // held to the end: nothing new is created
-    remove_temporaries();
-    static const char message[] = "calder: interrupted\n";
-    (void)!::write(STDERR_FILENO, message, sizeof message - 1);
-    ::_exit(128 + signal_number);
-  }
-};
-
-InterruptGuard::InterruptGuard() {
-  std::call_once(g_semaphore_made, [] { ::sem_init(&g_signal_posted, 0, 0); });
-  while (::sem_trywait(&g_signal_posted) == 0) {
-  }
-  g_signal = 0;
-  watchdog_ = std::make_unique<Watchdog>();
-  struct sigaction action {};
-  action.sa_handler = note_signal;
-  sigemptyset(&action.sa_mask);
-  action.sa_flags = 0;
-  // A signal ignored when we started (nohup, a background job of a script)
-  // stays ignored.
-  for (std::size_t i = 0; i < terminating_signals.size(); ++i) {
-    ::sigaction(terminating_signals[i], nullptr, &old_[i]);
-    if (old_[i].sa_handler != SIG_IGN) ::sigaction(terminating_signals[i], &action, nullptr);
-  }
-}
-
-InterruptGuard::~InterruptGuard() {
-  watchdog_.reset();
-  for (std::size_t i = 0; i < terminating_signals.size(); ++i) {
-    ::sigaction(terminating_signals[i], &old_[i], nullptr);
-  }
-}
-
-void InterruptGuard::check() const {
-  const int signal_number = g_signal;
-  if (signal_number != 0) throw Interrupted(signal_number);
 }
 
 }  // namespace calder::app

@@ -9,17 +9,12 @@
 //   progress.finish();
 #pragma once
 
-#include <signal.h>
-
-#include <array>
 #include <chrono>
-#include <csignal>
 #include <cstdint>
-#include <memory>
-#include <mutex>
 #include <ostream>
 #include <string>
 
+#include "calder/output.hpp"
 #include "errors.hpp"
 
 namespace calder::app {
@@ -57,13 +52,9 @@ class Progress {
   Clock::time_point last_draw_;
 };
 
-// The signals that end a job and that can be caught: each removes what the
-// run created (temporaries, staged frames) and exits 128 + the signal.
-constexpr std::array<int, 9> terminating_signals = {SIGINT,  SIGTERM, SIGHUP,  SIGQUIT, SIGPIPE,
-                                                    SIGXFSZ, SIGALRM, SIGUSR1, SIGUSR2};
-
-// The job was stopped by one of terminating_signals: exit 128 + signal, after
-// the one-line message "interrupted".
+// The job was stopped by one of output::terminating_signals: exit 128 +
+// signal, after the one-line message "interrupted" (none for SIGPIPE: the
+// reader of a pipe went away, `calder run ... | head`).
 class Interrupted : public RunError {
  public:
   explicit Interrupted(int signal_number)
@@ -75,38 +66,20 @@ class Interrupted : public RunError {
   int signal_number_;
 };
 
-// While alive, the terminating signals only set a flag (the previous handlers
-// come back on destruction); check() throws Interrupted once one arrived. The
-// loops of a job call check() once a frame; a frame, or a sum, that runs on
-// for interrupt_grace_ms after the signal is cut short by the guard's
-// watchdog thread: it removes the registered temporaries (below), prints
-// "calder: interrupted" and ends the process with 128 + the signal.
+// While alive, the terminating signals only set a flag (calder's one handler,
+// output::InterruptScope in calder/output.hpp: its watchdog removes the
+// registered temporaries and ends a job that doesn't stop in time); check()
+// throws Interrupted once one arrived. The loops of a job call it once a frame.
 class InterruptGuard {
  public:
-  InterruptGuard();
-  ~InterruptGuard();
-  InterruptGuard(const InterruptGuard&) = delete;
-  InterruptGuard& operator=(const InterruptGuard&) = delete;
-
-  void check() const;
+  void check() const {
+    if (const int signal_number = output::InterruptScope::signal(); signal_number != 0) {
+      throw Interrupted(signal_number);
+    }
+  }
 
  private:
-  std::array<struct sigaction, terminating_signals.size()> old_{};
-  struct Watchdog;
-  std::unique_ptr<Watchdog> watchdog_;
+  output::InterruptScope scope_;
 };
-
-// How long a job may take to stop by itself after a terminating signal.
-constexpr int interrupt_grace_ms = 400;
-
-// What a job created and must remove if it is stopped (a temporary file, a
-// staging folder with what is inside it), for the watchdog. Register a path
-// while holding temporaries_lock() across its creation, so that the watchdog
-// never races a file being created; unregister it once renamed or removed.
-std::mutex& temporaries_lock();
-std::size_t register_temporary(const std::string& path, bool folder);
-void unregister_temporary(std::size_t id);
-// The same, for a caller that holds temporaries_lock().
-void unregister_temporary_locked(std::size_t id);
 
 }  // namespace calder::app

@@ -7,11 +7,8 @@
 #include <CLI/CLI.hpp>
 #include <cmath>
 #include <cstdio>
-#include <filesystem>
 #include <memory>
-#include <mutex>
 #include <string>
-#include <system_error>
 #include <utility>
 #include <vector>
 
@@ -26,20 +23,25 @@
 
 namespace calder::app {
 
-namespace fs = std::filesystem;
-
 namespace {
 
-// Unregisters a temporary from the interrupt watchdog at the end of a scope.
-struct ForgetTemporary {
-  explicit ForgetTemporary(std::size_t temporary) : id(temporary) {}
-  std::size_t id = 0;
-  ForgetTemporary(const ForgetTemporary&) = delete;
-  ForgetTemporary& operator=(const ForgetTemporary&) = delete;
-  ~ForgetTemporary() {
-    if (id != 0) unregister_temporary(id);
+// Whether `name` is a frame of a render: frame-NNNNNN.png (six or more
+// digits), which a new render replaces.
+bool is_frame_name(const std::string& name) {
+  if (!name.starts_with("frame-") || !name.ends_with(".png")) return false;
+  const std::string digits = name.substr(6, name.size() - 10);
+  if (digits.size() < 6) return false;
+  for (const char c : digits) {
+    if (c < '0' || c > '9') return false;
   }
-};
+  return true;
+}
+
+std::string frame_name(std::int64_t index) {
+  char name[32];
+  std::snprintf(name, sizeof name, "frame-%06lld.png", static_cast<long long>(index));
+  return name;
+}
 std::string quoted(const std::string& text) { return "'" + detail::printable(text) + "'"; }
 
 std::int64_t parse_every(const std::string& text) {
@@ -163,15 +165,7 @@ CanvasSize canvas_size(const std::optional<std::string>& size,
 
 void check_output_path(const std::string& flag, const std::string& path) {
   if (path.empty()) throw InputError(flag + ": the file name is empty");
-  std::error_code ec;
-  if (fs::is_directory(path, ec))
-    throw InputError(shown_path(path) + ": is a directory, not a file");
-  const fs::path target(path);
-  const fs::path directory = target.has_parent_path() ? target.parent_path() : fs::path(".");
-  if (!fs::is_directory(directory, ec)) {
-    throw InputError(shown_path(path) + ": cannot create the file: directory '" +
-                     shown_path(directory.string()) + "' does not exist");
-  }
+  check_outputs({}, {{flag, path}});
 }
 
 std::string file_name_part(const std::string& name) {
@@ -257,7 +251,7 @@ void check_render_frames(const PreparedInput& input, const RenderOptions& option
 // What render wrote, one line per output (null: not chosen); paths shown
 // escaped, as in every message.
 void report_written(std::ostream& out, const Canvas& canvas, std::int64_t frames,
-                    const FrameFolder* png, const GifWriter* gif, double fps) {
+                    const output::AtomicFolder* png, const GifWriter* gif, double fps) {
   const std::string what = std::to_string(frames) + (frames == 1 ? " frame" : " frames") + " of " +
                            size_text(canvas) + " pixels";
   if (png != nullptr) {
@@ -297,9 +291,8 @@ void check_render_outputs(const RenderOptions& options, const PreparedInput& inp
   if (input.state_path) inputs.push_back({"--state", *input.state_path});
   std::vector<NamedPath> outputs;
   if (options.gif) outputs.push_back({"--gif", *options.gif});
-  std::optional<NamedPath> frames;
-  if (options.png) frames = NamedPath{"--png", *options.png};
-  check_outputs(inputs, outputs, frames);
+  if (options.png) outputs.push_back({"--png", *options.png, output::Kind::folder});
+  check_outputs(inputs, outputs);
 }
 
 }  // namespace
@@ -311,7 +304,6 @@ void render_command(const RenderOptions& options, std::ostream& out, std::ostrea
   const std::int64_t every = options.every ? parse_every(*options.every) : 1;
   const double fps = options.fps ? parse_fps(*options.fps) : 30.0;
   if (options.scale) (void)parse_scale("--scale", *options.scale);
-  if (options.gif) check_output_path("--gif", *options.gif);
 
   const PreparedInput input = prepare_input(options.input);
   const std::int64_t frames = input.scene.frames;
@@ -329,24 +321,28 @@ void render_command(const RenderOptions& options, std::ostream& out, std::ostrea
     rethrow_with_context(e, "--size/--scale: ");
   }
   // From here on a terminating signal only sets a flag: the run stops at the
-  // next frame and the destructors remove the GIF's temporary and the staged frames.
+  // next frame and the destructors remove the GIF's temporary and the staged frames
+  // (both registered with the output module's signal handler as they are made).
   const InterruptGuard interrupt;
   std::optional<GifWriter> gif;
-  std::size_t gif_temporary = 0;
-  if (options.gif) {
-    const std::lock_guard<std::mutex> lock(temporaries_lock());
-    gif.emplace(*options.gif, canvas->pixel_width(), canvas->pixel_height(), fps);
-    if (!gif->temp_path().empty()) gif_temporary = register_temporary(gif->temp_path(), false);
-  }
-  const ForgetTemporary forget_gif{gif_temporary};  // the GIF in place, or removed
-  std::optional<FrameFolder> png;
-  if (options.png) png.emplace(*options.png);
+  if (options.gif) gif.emplace(*options.gif, canvas->pixel_width(), canvas->pixel_height(), fps);
+  std::optional<output::AtomicFolder> png;
+  if (options.png)
+    png.emplace("--png", *options.png, is_frame_name, "a PNG file of an earlier render");
 
   Progress progress(err, "render " + detail::printable(input.scene.name), frames,
                     !options.quiet && stderr_is_terminal());
   std::int64_t index = 0;
   const auto emit = [&]() {
-    if (png) png->write(*canvas, index);
+    if (png) {
+      std::vector<std::uint8_t> bytes;
+      try {
+        bytes = canvas->encode_png();
+      } catch (const Error& e) {
+        throw RunError("--png: " + std::string(e.what()));
+      }
+      png->write(frame_name(index), bytes);
+    }
     if (gif) {
       try {
         gif->add_frame(*canvas);

@@ -6,6 +6,7 @@
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <cctype>
+#include <cstdio>
 #include <string>
 
 #include "calder/error.hpp"
@@ -35,14 +36,49 @@ void write_run(Simulation& simulation, const PreparedInput& input, Writer& write
   });
 }
 
-// The trajectory may be neither the scene file nor the --state file
-// (output_policy.hpp).
-void check_run_outputs(const std::string& trajectory, const PreparedInput& input) {
+// Every output of the run (--trajectory, --save, --archive) by the output
+// policy, against its inputs (the scene file or snapshot, the --state file)
+// and one another, before anything is created or truncated.
+void check_run_outputs(const RunOptions& options, const PreparedInput& input) {
   std::vector<NamedPath> inputs;
   struct stat info {};
-  if (::stat(input.source.c_str(), &info) == 0) inputs.push_back({"the scene file", input.source});
+  if (::stat(input.source.c_str(), &info) == 0) {
+    inputs.push_back({input.resumed ? "the snapshot" : "the scene file", input.source});
+  }
   if (input.state_path) inputs.push_back({"--state", *input.state_path});
-  check_outputs(inputs, {{"--trajectory", trajectory}}, std::nullopt);
+  std::vector<NamedPath> outputs;
+  if (options.trajectory) outputs.push_back({"--trajectory", *options.trajectory});
+  add_snapshot_outputs(options.snapshot, outputs);
+  check_outputs(inputs, outputs);
+}
+
+// Over this many bytes written a run is refused (exit 2) unless
+// --no-work-limit is given.
+constexpr double max_run_bytes = 16e9;
+// A trajectory row: frame and body, four numbers in their shortest form.
+constexpr double trajectory_row_bytes = 96.0;
+
+// The budget of the bytes a run will write: its trajectory and snapshots.
+void check_bytes_written(const RunOptions& options, const PreparedInput& input,
+                         const Simulation& simulation) {
+  if (input.no_work_limit) return;
+  const std::int64_t frames = input.scene.frames;
+  const double snapshots =
+      static_cast<double>(snapshot_bytes_written(options.snapshot, simulation, frames));
+  const double trajectory = options.trajectory
+                                ? static_cast<double>(frames - simulation.frame() + 1) *
+                                      static_cast<double>(simulation.world().body_count()) *
+                                      trajectory_row_bytes
+                                : 0.0;
+  const double bytes = snapshots + trajectory;
+  if (bytes <= max_run_bytes) return;
+  char text[64];
+  std::snprintf(text, sizeof text, bytes < 100e9 ? "about %.1f GB" : "about %.0f GB", bytes / 1e9);
+  throw InputError(
+      detail::printable(input.source, 240) + ": this run would write " + text +
+      (snapshots > trajectory ? " of snapshots (--archive, --save)" : " of trajectory") +
+      ", over the budget of 16 GB; use a larger --every or fewer --frames, or "
+      "--no-work-limit to write it anyway");
 }
 
 }  // namespace
@@ -115,19 +151,22 @@ void run_command(const RunOptions& options, std::ostream& out, std::ostream& err
   if (options.trajectory) (void)trajectory_format(options.format, *options.trajectory);
   check_snapshot_options(options.snapshot, options.input.scene);
   const PreparedInput input = prepare_input(options.input);
-  if (options.trajectory) check_run_outputs(*options.trajectory, input);
+  check_run_outputs(options, input);
   Simulation simulation = start_simulation(input);
-  SnapshotOutputs snapshots(options.snapshot, simulation);
   use_device(options.device, simulation);  // --device gpu: every step on the GPU, or an error
   const std::int64_t frames = input.scene.frames;
   check_world_work(input, simulation,
                    {.once = options.trajectory
                                 ? 0.0
                                 : static_cast<double>(summary_potential_cost(simulation.world()))});
+  if (options.trajectory) check_trajectory_rows(frames, simulation.world().body_count());
+  check_bytes_written(options, input, simulation);
 
   // A terminating signal stops the run at the next frame (exit 128 + signal,
-  // the temporary removed); long runs show their progress on a terminal.
+  // the temporaries removed); long runs show their progress on a terminal.
+  // The outputs are made only now, every check passed.
   const InterruptGuard interrupt;
+  SnapshotOutputs snapshots(options.snapshot, simulation);
   Progress progress(err, "run " + detail::printable(input.scene.name), frames,
                     stderr_is_terminal());
   const auto after_frame = [&](std::int64_t frame) {
@@ -147,7 +186,6 @@ void run_command(const RunOptions& options, std::ostream& out, std::ostream& err
 
   const std::string& path = *options.trajectory;
   const TrajectoryFormat format = trajectory_format(options.format, path);
-  check_trajectory_rows(frames, simulation.world().body_count());
   OutputFile file(path);
   std::ostream& stream = file.is_stdout() ? out : file.stream();
   if (format == TrajectoryFormat::csv) {
@@ -164,7 +202,7 @@ void run_command(const RunOptions& options, std::ostream& out, std::ostream& err
   }
   if (file.is_stdout()) {
     out.flush();
-    if (!out) throw RunError("standard output: write failed");
+    check_standard_output(out);
   }
   file.commit();
   snapshots.finish(simulation);

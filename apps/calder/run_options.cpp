@@ -92,8 +92,17 @@ void add_input_options(CLI::App& command, InputOptions& options) {
                    "frames otherwise) is over the budget of 10^12");
 }
 
+std::size_t budget_bodies(const Scene& scene, std::size_t bodies) {
+  // A press that resets rebuilds the scene's body groups (whatever --state
+  // or a snapshot started with): the run may step that many bodies.
+  if (scene.on_press != PressAction::reset) return bodies;
+  std::size_t rebuilt = 0;
+  for (const BodyGroup& group : scene.bodies) rebuilt += group.count;
+  return std::max(bodies, rebuilt);
+}
+
 double run_work(const Scene& scene, std::size_t bodies) {
-  const auto n = static_cast<double>(bodies);
+  const auto n = static_cast<double>(budget_bodies(scene, bodies));
   // Every field visits every body each frame; the scripted mouse is looked up
   // in its press ranges and moves each frame.
   double per_frame = n * static_cast<double>(std::max<std::size_t>(scene.fields.size(), 1)) +
@@ -240,7 +249,8 @@ void limit_threads(Scene& scene, const std::string& source) {
 
 void check_work_budget(const Scene& scene, std::size_t bodies, const std::string& source) {
   const double work = run_work(scene, bodies);
-  if (work > max_run_work) refuse_work(source, bodies, scene.frames, work, "");
+  if (work > max_run_work)
+    refuse_work(source, budget_bodies(scene, bodies), scene.frames, work, "");
 }
 
 void check_world_work(const PreparedInput& input, const Simulation& simulation,
@@ -259,7 +269,7 @@ void check_world_work(const PreparedInput& input, const Simulation& simulation,
   const double work = run_work(input.scene, n) + clustered * frames +
                       extras.per_image * extras.images + extras.once;
   if (work > max_run_work) {
-    refuse_work(input.source, n, input.scene.frames, work,
+    refuse_work(input.source, budget_bodies(input.scene, n), input.scene.frames, work,
                 clustered > 0.0 ? ", with bodies that share a point" : ", with diagnostics");
   }
 }

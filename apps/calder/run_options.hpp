@@ -48,6 +48,9 @@ struct InputOptions {
 // (exit 2) unless --no-work-limit is given: 10^12 pair evaluations take tens
 // of minutes to hours on one machine.
 constexpr double max_run_work = 1e12;
+// The bodies a run may step: `bodies`, or the scene's body groups when a press
+// resets them (on_press = reset) and they are more.
+std::size_t budget_bodies(const Scene& scene, std::size_t bodies);
 // The work of a scene with this many bodies, per the scene alone (see max_run_work).
 double run_work(const Scene& scene, std::size_t bodies);
 // Barnes-Hut's pairs a frame for n bodies at opening angle theta:

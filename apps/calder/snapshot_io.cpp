@@ -10,7 +10,10 @@
 #include <string>
 #include <system_error>
 #include <utility>
+#include <variant>
+#include <vector>
 
+#include "calder/body_columns.hpp"
 #include "calder/error.hpp"
 #include "calder/snapshot.hpp"
 #include "errors.hpp"
@@ -94,40 +97,61 @@ void add_snapshot_options(CLI::App& command, SnapshotOptions& options) {
       ->needs(archive);
 }
 
-void check_snapshot_options(const SnapshotOptions& options, const std::string& source) {
-  std::error_code ec;
-  if (options.archive && std::filesystem::equivalent(*options.archive, source, ec)) {
-    throw InputError(
-        "--archive: " + detail::printable(source, 240) +
-        " is what this run starts from; an archive is written anew: give another file");
-  }
+void check_snapshot_options(const SnapshotOptions& options, const std::string& /*source*/) {
+  // Whether the paths are inputs or one another: output::check_outputs, with
+  // the run's other outputs (snapshot_outputs_of).
   for (const auto& [flag, path] :
        {std::pair{"--save", &options.save}, std::pair{"--archive", &options.archive}}) {
     if (*path && ((*path)->empty() || **path == "-")) {
       throw InputError(std::string(flag) + ": give a file name (a snapshot is binary)");
     }
   }
-  if (options.save && options.archive && *options.save == *options.archive) {
-    throw InputError("--save and --archive name the same file");
-  }
   if (options.every) (void)parse_every(*options.every);
+}
+
+void add_snapshot_outputs(const SnapshotOptions& options, std::vector<output::NamedPath>& outputs) {
+  if (options.save) outputs.push_back({"--save", *options.save});
+  if (options.archive) outputs.push_back({"--archive", *options.archive, output::Kind::archive});
+}
+
+std::uint64_t snapshot_bytes_written(const SnapshotOptions& options, const Simulation& simulation,
+                                     std::int64_t frames) {
+  if (!options.save && !options.archive) return 0;
+  // A snapshot is its body columns and a few kilobytes of the rest (the
+  // scene, fields, mouse; 8 KiB is generous): estimated, never built just
+  // to be measured.
+  constexpr std::uint64_t columns = sizeof(BodyColumnsOf<char>);
+  const std::uint64_t one =
+      columns * 8 * static_cast<std::uint64_t>(simulation.world().body_count()) + (8U << 10U);
+  std::uint64_t count = options.save ? 1 : 0;
+  if (options.archive) {
+    const std::int64_t every = options.every ? parse_every(*options.every) : default_archive_every;
+    const std::int64_t start = simulation.frame();
+    // The start, every K-th frame after it, and the last.
+    count +=
+        2 + static_cast<std::uint64_t>(std::max<std::int64_t>(frames / every - start / every, 0));
+  }
+  return count * (one + 64);  // a record's header and padding
 }
 
 SnapshotOutputs::SnapshotOutputs(const SnapshotOptions& options, const Simulation& simulation) {
   if (options.every) every_ = parse_every(*options.every);
-  if (options.save) {
-    // A temporary made and removed now: a bad path stops the run before it starts.
-    { const OutputFile probe(*options.save); }
-    save_.emplace(*options.save);
-  }
+  // Made now (the --save file's temporary; the archive opened, locked and
+  // read), written only after the run: a bad path stops it before it starts.
+  if (options.save) save_.emplace(*options.save);
   if (options.archive) {
     archive_ = std::make_unique<ArchiveWriter>(*options.archive);
-    archive_->append(simulation);
+    // A run going on from the archive's last snapshot doesn't repeat it.
+    if (archive_->last_frame() != simulation.frame()) archive_->append(simulation);
     last_archived_ = simulation.frame();
   }
 }
 
-SnapshotOutputs::~SnapshotOutputs() = default;
+SnapshotOutputs::~SnapshotOutputs() {
+  // A run that ends in an error leaves the archive as it was; one stopped by
+  // a signal keeps the snapshots written so far (with their index).
+  if (archive_ && output::InterruptScope::signal() == 0) archive_->abandon();
+}
 
 void SnapshotOutputs::after_frame(const Simulation& simulation) {
   if (archive_ && simulation.frame() % every_ == 0) {
@@ -175,7 +199,17 @@ PreparedInput prepare_resume(const InputOptions& options) {
   // The run's end, which a snapshot saved from it keeps: --frames, or the
   // scene's frames (those of the run that saved it), and not before the snapshot.
   input.scene.frames = frames ? *frames : std::max(input.scene.frames, simulation.frame());
-  simulation = Simulation(input.scene, simulation.world(), simulation.progress());
+  // The same caps as a scene file's: a snapshot's thread counts as the
+  // processors allow (the scene's, and the world's as it is now).
+  limit_threads(input.scene, input.source);
+  World world = simulation.world();
+  world.set_threads(std::min(world.threads(), usable_threads()));
+  for (std::size_t k = 0; k < world.fields().size(); ++k) {
+    if (auto* mutual = std::get_if<MutualAttraction>(&world.field(k))) {
+      mutual->threads = std::min(mutual->threads, std::max(usable_threads(), 1));
+    }
+  }
+  simulation = Simulation(input.scene, std::move(world), simulation.progress());
   if (!options.no_work_limit) {
     Scene rest = input.scene;
     rest.frames -= simulation.frame();
@@ -187,7 +221,7 @@ PreparedInput prepare_resume(const InputOptions& options) {
 
 std::string save_window_snapshot(const Simulation& simulation, const std::string& stem) {
   const std::string path = stem + "-" + std::to_string(simulation.frame()) + ".snap";
-  save_snapshot(simulation, path);
+  save_snapshot(simulation, path);  // an output::AtomicFile
   return path;
 }
 

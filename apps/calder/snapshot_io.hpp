@@ -19,7 +19,9 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
+#include "calder/output.hpp"
 #include "calder/scene.hpp"
 #include "calder/snapshot.hpp"
 #include "output_file.hpp"
@@ -42,13 +44,19 @@ struct SnapshotOptions {
 
 // Adds --save, --archive and --every to a verb (calder run).
 void add_snapshot_options(CLI::App& command, SnapshotOptions& options);
-// Checks them before anything is read (`source`: the SCENE|FILE argument,
-// which --archive may not overwrite). Throws InputError naming the flag.
+// Checks the flags before anything is read. Throws InputError naming the flag.
 void check_snapshot_options(const SnapshotOptions& options, const std::string& source);
+// Adds --save and --archive to the outputs of a run (checked together by
+// output::check_outputs).
+void add_snapshot_outputs(const SnapshotOptions& options, std::vector<output::NamedPath>& outputs);
+// The bytes the snapshots of a run to `frames` will write (for the budget).
+std::uint64_t snapshot_bytes_written(const SnapshotOptions& options, const Simulation& simulation,
+                                     std::int64_t frames);
 
-// The snapshot outputs of one run: the archive is created (and the start
-// written to it) and the --save file's temporary made when constructed, so
-// that a bad path stops the run before its first frame.
+// The snapshot outputs of one run, made once every check passed: the
+// --save file's temporary, the archive opened (locked, its records read) and
+// the start appended. Destroyed without finish() after an error, the archive
+// is put back as it was (one stopped by a signal keeps what was appended).
 class SnapshotOutputs {
  public:
   SnapshotOutputs(const SnapshotOptions& options, const Simulation& simulation);

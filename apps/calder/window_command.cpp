@@ -432,7 +432,7 @@ void window_command(const WindowOptions& options, std::ostream& out, std::ostrea
     if (std::filesystem::is_regular_file(input.source))
       inputs.push_back({"the scene file", input.source});
     if (input.state_path) inputs.push_back({"--state", *input.state_path});
-    check_outputs(inputs, {{"--screenshot", *options.screenshot}}, std::nullopt);
+    check_outputs(inputs, {{"--screenshot", *options.screenshot}});
   }
   // Installed before SDL starts, SDL leaves SIGINT and SIGTERM to it: every
   // terminating signal ends the window with exit 128 + signal, cleaned up.

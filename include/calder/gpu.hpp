@@ -50,9 +50,10 @@ struct DeviceInfo {
   std::string driver;       // the driver's name and version where it reports them
   std::uint32_t vendor_id = 0;
   std::uint32_t device_id = 0;
-  bool compute = false;            // has a queue family with compute
-  bool float64 = false;            // shaderFloat64: the float64 kernels run
-  std::uint64_t memory_bytes = 0;  // its largest device-local heap
+  bool compute = false;                // has a queue family with compute
+  bool float64 = false;                // shaderFloat64: the float64 kernels run
+  std::uint64_t memory_bytes = 0;      // its largest device-local heap
+  std::uint64_t max_buffer_bytes = 0;  // maxStorageBufferRange: the largest buffer a kernel reads
 };
 
 // Every device Vulkan sees, in its order; empty when it sees none (no Vulkan

@@ -222,7 +222,7 @@ class Simulation {
   // The frame counter and the mouse's state (SimulationProgress).
   [[nodiscard]] SimulationProgress progress() const;
   // Puts back a progress saved from a simulation of the same scene. Throws
-  // calder::Error, changing nothing, for a negative frame, a tossed body or a
+  // calder::Error, changing nothing, for a frame outside 0..max_frames, a tossed body or a
   // dragged field that this simulation doesn't have, or a non-finite value.
   void restore_progress(const SimulationProgress& progress);
 

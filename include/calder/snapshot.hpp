@@ -27,11 +27,13 @@
 #include <cstddef>
 #include <cstdint>
 #include <fstream>
+#include <memory>
 #include <optional>
 #include <span>
 #include <string>
 #include <vector>
 
+#include "calder/output.hpp"
 #include "calder/scene.hpp"
 #include "calder/world.hpp"
 
@@ -41,6 +43,10 @@ namespace calder {
 inline constexpr std::uint32_t kSnapshotVersion = 1;
 
 using Bytes = std::vector<std::uint8_t>;
+
+// The largest snapshot read (a file, or one record of an archive): a world of
+// max_bodies bodies takes 800 MB.
+inline constexpr std::uint64_t max_snapshot_bytes = std::uint64_t{2} << 30;
 
 // --- snapshots in memory ---
 [[nodiscard]] Bytes to_snapshot(const Simulation& simulation);
@@ -69,49 +75,68 @@ struct SnapshotInfo {
 [[nodiscard]] bool looks_like_archive(std::span<const std::uint8_t> bytes);
 
 // --- snapshot files ---
-// Written to a temporary file beside `path`, renamed over it once complete:
-// never left half written. Throws RunError when the write fails.
+// Written as an output::AtomicFile (a temporary beside `path`, renamed over
+// it once complete: never left half written). Throws InputError when the
+// policy refuses the path, RunError when the write fails.
 void save_snapshot(const Simulation& simulation, const std::string& path);
 void save_snapshot(const World& world, const std::string& path);
 // Throws InputError naming the file for one that can't be read or is not a
 // valid snapshot.
 [[nodiscard]] Simulation load_simulation(const std::string& path);
 [[nodiscard]] World load_world(const std::string& path);
-// The whole file (InputError naming it when it can't be read).
-[[nodiscard]] Bytes read_file_bytes(const std::string& path);
+// The whole file (InputError naming it when it can't be read or is larger
+// than `max_bytes`, checked against its length before anything is read).
+[[nodiscard]] Bytes read_file_bytes(const std::string& path,
+                                    std::uint64_t max_bytes = max_snapshot_bytes);
 
 // --- archives: snapshots appended to one file ---
 //
-// Each snapshot is a record with its own length and CRC-32, flushed as it is
-// written, so a run killed at any moment (even by SIGKILL) leaves an archive
-// readable up to its last complete record. close() appends an index of the
-// records; without one (a killed run), the reader rebuilds it by reading the
-// records' headers only.
+// Each snapshot is a record with its own length and CRC-32, written to the
+// operating system as it is appended, so a run killed at any moment (even by
+// SIGKILL) leaves an archive readable up to its last complete record. close()
+// appends an index of the records; without one (a killed run), the reader
+// rebuilds it by reading the records' headers only.
+//
+// A writer goes through the output policy (calder/output.hpp, AppendFile):
+// it holds an exclusive lock on the file while it lives (a second writer is
+// refused), creates a new archive or appends to an existing one after its
+// last complete snapshot, and refuses a file that is not an archive. Nothing
+// is written before the first append(). abandon() puts the file back as it
+// was (an archive it created is removed).
 class ArchiveWriter {
  public:
-  // Creates (or truncates) the file; throws RunError when it can't.
+  // Opens (or creates) the archive and reads its records; throws InputError
+  // when the policy refuses the path, the file is not an archive, or another
+  // writer holds it.
   explicit ArchiveWriter(const std::string& path);
-  ~ArchiveWriter();  // close(), errors ignored
+  ~ArchiveWriter();  // close(), errors ignored (unless abandoned)
   ArchiveWriter(const ArchiveWriter&) = delete;
   ArchiveWriter& operator=(const ArchiveWriter&) = delete;
 
-  // Appends a snapshot of the simulation at its current frame and flushes
-  // it to the operating system. Throws RunError when the write fails.
+  // Appends a snapshot of the simulation at its current frame. Throws
+  // RunError when the write fails.
   void append(const Simulation& simulation);
-  // Writes the index and closes the file (once; later calls do nothing).
+  // Writes the index, flushes to disk and closes the file (once; later calls
+  // do nothing).
   void close();
+  // Puts the file back as it was when opened (never throws).
+  void abandon() noexcept;
+  // The snapshots in the archive (those it held before, and those appended).
   [[nodiscard]] std::size_t size() const { return index_.size(); }
+  // The frame of the archive's last snapshot, if it has one.
+  [[nodiscard]] std::optional<std::int64_t> last_frame() const;
 
  private:
   void write(const Bytes& bytes);
   std::string path_;
-  std::ofstream out_;
-  std::uint64_t offset_ = 0;
+  std::unique_ptr<output::AppendFile> file_;
+  std::uint64_t offset_ = 0;  // where the next record goes
   struct Entry {
     std::int64_t frame;
     std::uint64_t offset;
   };
   std::vector<Entry> index_;
+  bool started_ = false;  // something was written
   bool closed_ = false;
 };
 
@@ -135,6 +160,7 @@ class ArchiveReader {
   [[nodiscard]] Simulation simulation(std::size_t i) const;
 
  private:
+  friend class ArchiveWriter;
   struct Record {
     std::int64_t frame;
     std::uint64_t offset;  // of the record's header
@@ -144,6 +170,7 @@ class ArchiveReader {
   void scan(std::ifstream& in, std::uint64_t size);
   std::string path_;
   std::vector<Record> records_;
+  std::uint64_t records_end_ = 0;  // just after the last complete record
   bool complete_ = false;
 };
 

@@ -123,6 +123,12 @@ inline constexpr std::array<ArithmeticName, 3> kArithmeticNames{{
   return "?";
 }
 
+// The most threads a world or a mutual attraction may ask for (a scene file,
+// a snapshot, the API: one check), and the most steps a world's clock counts
+// (the count stays exact as a double and far from wrapping).
+inline constexpr int max_threads = 1024;
+inline constexpr std::int64_t max_step_count = std::int64_t{1} << 53;
+
 struct WorldDef {
   double width = 640.0;
   double height = 240.0;
@@ -135,8 +141,8 @@ struct WorldDef {
   // kernels for (semi-implicit Euler, simultaneous, no custom force or
   // mutual attraction); World::step throws calder::Error otherwise.
   Arithmetic arithmetic = Arithmetic::book;
-  // Threads of the whole-world kernels: 0 = every core, n > 0 = n. Results
-  // are bit-identical for any number.
+  // Threads of the whole-world kernels: 0 = every core, n > 0 = n, at most
+  // max_threads. Results are bit-identical for any number.
   int threads = 0;
   // The book's topSpeed: > 0 limits each body's speed after v += a dt, as
   // p5's vel.limit(topSpeed) (semi_implicit_euler, book arithmetic); 0, none.

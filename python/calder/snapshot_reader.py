@@ -13,12 +13,15 @@ numpy views of the file's bytes, without copying:
     archive.frames                      # the frame of each snapshot
     archive.snapshot(archive.index_of(120)).bodies["vy"]   # reads that one only
 
-Every problem (a truncated or corrupted file, another version) raises
-SnapshotError, a ValueError whose message names the file.
+Every problem (a file that can't be read, a truncated or corrupted file,
+another version) raises SnapshotError, whose one-line message names the file
+and the problem. Inside the calder package it is a calder.Error (calder's one
+error type); copied where calder isn't built, a ValueError.
 """
 
 from __future__ import annotations
 
+import contextlib
 import os
 import struct
 import zlib
@@ -26,16 +29,36 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+try:  # inside the calder package: calder's one error type
+    from ._calder import Error as _Base
+except ImportError:  # copied where calder isn't built
+    _Base = ValueError
+
 SNAPSHOT_MAGIC = b"CALDSNAP"
 ARCHIVE_MAGIC = b"CALDARCH"
 ARCHIVE_END = b"CALDAEND"
 VERSION = 1
 TAGS = ("SCEN", "SIMU", "WRLD", "RAND", "FLDS", "BODY")
 _RECORD = struct.Struct("<4sIqQ")  # an archive record: tag, CRC-32, frame, length
+MAX_SNAPSHOT_BYTES = 2 << 30  # the largest snapshot read (calder's max_snapshot_bytes)
+MAX_FRAMES = 10_000_000
 
 
-class SnapshotError(ValueError):
-    """A file that is not a valid calder snapshot or archive."""
+class SnapshotError(_Base):
+    """A file that is not a valid calder snapshot or archive, or can't be read."""
+
+
+@contextlib.contextmanager
+def _reading(source: str):
+    """Whatever goes wrong while reading `source` becomes one SnapshotError."""
+    try:
+        yield
+    except SnapshotError:
+        raise
+    except OSError as e:
+        raise SnapshotError(f"{source}: can't read: {e.strerror or e}") from None
+    except (struct.error, ValueError, IndexError, OverflowError, UnicodeError, MemoryError) as e:
+        raise SnapshotError(f"{source}: corrupted ({type(e).__name__}: {e})") from None
 
 
 def _padded(n: int) -> int:
@@ -56,6 +79,11 @@ class Snapshot:
 
 def read_sections(data, source: str = "snapshot") -> dict:
     """The sections of a snapshot's bytes, each checked against its CRC-32."""
+    with _reading(source):
+        return _read_sections(data, source)
+
+
+def _read_sections(data, source: str) -> dict:
     view = memoryview(data)
     if view[:8] == ARCHIVE_MAGIC:
         raise SnapshotError(f"{source}: an archive of snapshots, not one snapshot (use Archive)")
@@ -87,6 +115,9 @@ def read_sections(data, source: str = "snapshot") -> dict:
 
 def _bodies(payload: memoryview, source: str) -> dict:
     n, columns = struct.unpack_from("<QI", payload, 0)
+    if 16 + 16 * columns > len(payload) or 8 * n * columns > len(payload):
+        raise SnapshotError(f"{source}: section BODY: {n} bodies of {columns} columns don't fit "
+                            f"its {len(payload)} bytes")
     names = [bytes(payload[16 + 16 * c:32 + 16 * c]).rstrip(b"\0").decode("ascii")
              for c in range(columns)]
     start = 16 + 16 * columns
@@ -98,7 +129,12 @@ def _bodies(payload: memoryview, source: str) -> dict:
 
 def parse_snapshot(data, source: str = "snapshot") -> Snapshot:
     """A snapshot from its bytes."""
-    sections = read_sections(data, source)
+    with _reading(source):
+        return _parse_snapshot(data, source)
+
+
+def _parse_snapshot(data, source: str) -> Snapshot:
+    sections = _read_sections(data, source)
     for tag in ("WRLD", "BODY"):
         if tag not in sections:
             raise SnapshotError(f"{source}: the section {tag} is missing")
@@ -114,8 +150,31 @@ def parse_snapshot(data, source: str = "snapshot") -> Snapshot:
 
 def read_snapshot(path) -> Snapshot:
     """A snapshot file."""
-    with open(path, "rb") as f:
-        return parse_snapshot(f.read(), os.fspath(path))
+    source = os.fspath(path)
+    with _reading(source):
+        with open(path, "rb") as f:
+            size = f.seek(0, os.SEEK_END)
+            if size > MAX_SNAPSHOT_BYTES:
+                raise SnapshotError(f"{source}: {size} bytes, larger than the {MAX_SNAPSHOT_BYTES} "
+                                    "bytes a snapshot may have (corrupted?)")
+            f.seek(0)
+            return _parse_snapshot(f.read(), source)
+
+
+def _plausible(tag, frame, length) -> bool:
+    return tag == b"SNAP" and 0 <= frame <= MAX_FRAMES and length <= MAX_SNAPSHOT_BYTES
+
+
+def _crc_at(f, offset, length):
+    """The CRC-32 of length bytes at offset, read a MiB at a time (None: the file ends first)."""
+    f.seek(offset)
+    crc, left = 0, length
+    while left > 0:
+        part = f.read(min(left, 1 << 20))
+        if not part:
+            return None
+        crc, left = zlib.crc32(part, crc), left - len(part)
+    return crc
 
 
 class Archive:
@@ -126,6 +185,10 @@ class Archive:
         self.path = os.fspath(path)
         self._records = []  # (frame, offset, length, crc)
         self.complete = False
+        with _reading(self.path):
+            self._open()
+
+    def _open(self):
         with open(self.path, "rb") as f:
             header = f.read(16)
             if header[:8] != ARCHIVE_MAGIC or len(header) < 16:
@@ -157,15 +220,20 @@ class Archive:
         tag, crc, _, length = self._header(f, at)
         if tag != b"INDX" or _padded(length) != size - 16 - at - _RECORD.size:
             return False
+        if length > 8 + 16 * (at // _RECORD.size):  # more entries than records fit
+            return False
         payload = f.read(length)
         if zlib.crc32(payload) != crc:
             return False
         (n,) = struct.unpack_from("<Q", payload, 0)
+        if 8 + 16 * n > len(payload):
+            return False
         entries = np.frombuffer(payload, dtype="<i8", count=2 * n, offset=8).reshape(n, 2)
         records = []
         for frame, offset in entries.tolist():
             header = self._header(f, offset)
-            if header is None or header[0] != b"SNAP" or header[2] != frame:
+            if (header is None or not _plausible(header[0], header[2], header[3])
+                    or header[2] != frame or offset + _RECORD.size + header[3] > at):
                 return False
             records.append((frame, offset, header[3], header[1]))
         self._records = records
@@ -175,14 +243,13 @@ class Archive:
         at = 16
         while size - at >= _RECORD.size:
             tag, crc, frame, length = self._header(f, at)
-            if tag != b"SNAP" or length > size - at - _RECORD.size:
+            if not _plausible(tag, frame, length) or length > size - at - _RECORD.size:
                 break
             self._records.append((frame, at, length, crc))
             at += _RECORD.size + _padded(length)
         if self._records:  # a last record cut while it was written
             frame, offset, length, crc = self._records[-1]
-            f.seek(offset + _RECORD.size)
-            if zlib.crc32(f.read(length)) != crc:
+            if _crc_at(f, offset + _RECORD.size, length) != crc:
                 self._records.pop()
 
     @property
@@ -204,7 +271,7 @@ class Archive:
         if not -len(self._records) <= i < len(self._records):
             raise SnapshotError(f"{self.path}: no snapshot {i} (the archive has {len(self)})")
         frame, offset, length, crc = self._records[i]
-        with open(self.path, "rb") as f:
+        with _reading(self.path), open(self.path, "rb") as f:
             f.seek(offset + _RECORD.size)
             data = f.read(length)
         if len(data) != length or zlib.crc32(data) != crc:

@@ -20,7 +20,21 @@ namespace calder::python {
 
 namespace {
 
-// A built-in scene's name, or the path of a scene file: as the calder
+// Whether rebuilding the scene's body groups (reset_bodies, or a press when
+// the scene's on_press resets) makes more bodies than the world holds: its
+// arrays may then move, which no live numpy view may see (after set_bodies
+// with fewer bodies than the scene).
+bool reset_may_grow(const Simulation& s) {
+  std::size_t rebuilt = 0;
+  for (const BodyGroup& group : s.scene().bodies) rebuilt += group.count;
+  return rebuilt > s.world().body_count();
+}
+
+bool press_may_grow(const Simulation& s) {
+  return s.scene().on_press == PressAction::reset && reset_may_grow(s);
+}
+
+// A built-in scene's name, or the path of a scene file, decided as the calder
 // command decides (calder::load_scene).
 Scene scene_from(const std::string& name_or_path) { return load_scene(name_or_path); }
 
@@ -117,7 +131,7 @@ void bind_scene_render(py::module_& m) {
       .def(
           "step",
           [](Simulation& s, std::optional<bool> mouse_pressed, std::optional<Vec2> mouse) {
-            require_resizable(s.world(), "Simulation.step", false);
+            require_resizable(s.world(), "Simulation.step", press_may_grow(s));
             if (!mouse_pressed && !mouse) {
               s.step();
             } else {
@@ -135,6 +149,7 @@ void bind_scene_render(py::module_& m) {
               throw Error("Simulation.run: frames must be >= 0 (got " + std::to_string(frames) +
                           ")");
             }
+            require_resizable(s.world(), "Simulation.run", press_may_grow(s));
             without_gil(s.world(), "Simulation.run", [&] {
               for (std::int64_t k = 0; k < frames; ++k) s.step();
             });
@@ -142,7 +157,7 @@ void bind_scene_render(py::module_& m) {
           py::arg("frames"), "frames scripted frames (the GIL is released meanwhile)")
       .def("reset_bodies",
            [](Simulation& s) {
-             require_resizable(s.world(), "Simulation.reset_bodies", false);
+             require_resizable(s.world(), "Simulation.reset_bodies", reset_may_grow(s));
              s.reset_bodies();
            })
       .def(

@@ -175,3 +175,26 @@ def test_step_releases_the_gil():
     thread.join()
     assert world.step_count == 3000
     assert spins > 1000
+
+
+def test_a_reset_that_would_move_the_arrays_is_refused_while_a_view_is_alive():
+    # After set_bodies with fewer bodies than the scene, a reset rebuilds more
+    # bodies than the arrays hold: they would move under the view.
+    sim = calder.Simulation("example-2.5")  # nine movers; a press resets them
+    sim.set_bodies([1.0, 2.0], [3.0, 4.0])
+    x = sim.world.x
+    with pytest.raises(calder.Error, match="numpy view"):
+        sim.reset_bodies()
+    with pytest.raises(calder.Error, match="numpy view"):
+        sim.step(mouse_pressed=True)
+    with pytest.raises(calder.Error, match="numpy view"):
+        sim.run(1)
+    assert x.tolist() == [1.0, 2.0] and sim.world.body_count == 2  # nothing changed
+    del x
+    gc.collect()
+    sim.reset_bodies()  # no view: allowed, the nine are back
+    assert sim.world.body_count == 9
+    y = sim.world.y
+    sim.reset_bodies()  # as many as the arrays hold: they stay, allowed
+    sim.step(mouse_pressed=True)
+    assert y.shape == (9,)

@@ -105,6 +105,7 @@ DeviceInfo describe(VkPhysicalDevice device, int index) {
   info.device_id = plain.deviceID;
   info.compute = compute_family(device) >= 0;
   info.float64 = features.shaderFloat64 == VK_TRUE;
+  info.max_buffer_bytes = plain.limits.maxStorageBufferRange;
   for (std::uint32_t h = 0; h < memory.memoryHeapCount; ++h) {
     if ((memory.memoryHeaps[h].flags & VK_MEMORY_HEAP_DEVICE_LOCAL_BIT) != 0) {
       info.memory_bytes = std::max<std::uint64_t>(info.memory_bytes, memory.memoryHeaps[h].size);
@@ -149,13 +150,17 @@ std::vector<VkPhysicalDevice> physical_devices(VkInstance instance) {
 // with compute; -1 if none.
 int chosen_device(const std::vector<DeviceInfo>& found) {
   if (const char* text = std::getenv(kDeviceVariable); text != nullptr && *text != '\0') {
-    char* end = nullptr;
-    const long index = std::strtol(text, &end, 10);
-    if (*end != '\0' || index < 0) {
+    // Digits only, and few enough to be an index: no sign, no spaces, no
+    // value that wraps to another device (4294967296 is not device 0).
+    const std::string digits(text);
+    const bool valid =
+        digits.size() <= 6 && digits.find_first_not_of("0123456789") == std::string::npos;
+    if (!valid) {
       throw InvalidArgument(std::string("calder::gpu: ") + kDeviceVariable +
-                            " must be a device index (got '" + text + "')");
+                            " must be a device index, 0 to 999999 (got '" +
+                            detail::printable(digits) + "')");
     }
-    return static_cast<int>(index);
+    return std::stoi(digits);
   }
   for (const DeviceInfo& d : found) {
     if (d.compute) return d.index;

@@ -20,7 +20,7 @@
 #include "calder/diagnostics.hpp"
 #include "calder/error.hpp"
 #include "calder/fields.hpp"
-#include "calder/output_file.hpp"
+#include "calder/output.hpp"
 #include "calder/render.hpp"
 
 namespace calder {
@@ -229,7 +229,7 @@ std::uint8_t unpremultiply(std::uint32_t c, std::uint32_t a) {
 }
 
 struct PngSink {
-  OutputFile* file = nullptr;
+  output::AtomicFile* file = nullptr;
   std::vector<unsigned char>* bytes = nullptr;
   int error = 0;
 };
@@ -782,7 +782,7 @@ std::vector<unsigned char> Canvas::encode_png() const {
 }
 
 void Canvas::write_png(const std::string& path) const {
-  OutputFile file("Canvas::write_png", path);
+  output::AtomicFile file("Canvas::write_png", path);
   PngSink sink{&file, nullptr, 0};
   const cairo_status_t status =
       cairo_surface_write_to_png_stream(impl_->surface, write_png_bytes, &sink);

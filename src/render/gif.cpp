@@ -16,7 +16,7 @@
 #include <vector>
 
 #include "calder/error.hpp"
-#include "calder/output_file.hpp"
+#include "calder/output.hpp"
 #include "calder/render.hpp"
 #include "quantize.hpp"
 
@@ -38,7 +38,7 @@ int delay_cs(int index, double fps) {
 }  // namespace
 
 struct GifWriter::Impl {
-  OutputFile file;
+  output::AtomicFile file;
   GifFileType* gif = nullptr;
   int width = 0;
   int height = 0;

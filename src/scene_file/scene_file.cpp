@@ -68,8 +68,9 @@ using scene_file_detail::Tbl;
 using scene_file_detail::TomlReader;
 using scene_file_detail::type_name;
 
-// The most threads a file may ask for.
-constexpr std::int64_t kMaxThreads = 1024;
+// The most threads a file may ask for: the core's limit (one check for files
+// and snapshots).
+constexpr std::int64_t kMaxThreads = max_threads;
 
 // The keys of the top level, in the order docs/SCENES.md lists them.
 const Keys kTopLevelKeys = {"name",     "description", "frames", "seed",     "origin",

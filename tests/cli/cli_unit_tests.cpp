@@ -25,7 +25,7 @@
 
 #include "calder/calder.hpp"
 #include "calder/nbody.hpp"
-#include "calder/output_file.hpp"
+#include "calder/output.hpp"
 #include "cli.hpp"
 #include "errors.hpp"
 #include "output_file.hpp"
@@ -258,7 +258,7 @@ TEST(CliOutputFile, NoCommitLeavesNothing) {
 TEST(CliOutputFile, BadPaths) {
   TempDir dir;
   EXPECT_EQ(message_of([&] { calder::app::OutputFile f(dir.file("no/out.csv")); }),
-            dir.file("no/out.csv") + ": cannot create the file: directory '" + dir.file("no") +
+            dir.file("no/out.csv") + ": cannot create the file: the folder '" + dir.file("no/") +
                 "' does not exist");
   EXPECT_EQ(message_of([&] { calder::app::OutputFile f(dir.file("")); }),
             dir.file("") + ": is a directory, not a file");
@@ -626,15 +626,15 @@ TEST(CliOutputPolicy, SameFileRefusedWhateverTheSpelling) {
 TEST(CliOutputPolicy, ForeignOwnerRefusalOnlyInStickyFolders) {
   TempDir dir;
   std::ofstream(dir.file("mine.csv")) << "x\n";
-  EXPECT_EQ(calder::foreign_owner_refusal(dir.file("mine.csv")), "");  // ours
-  EXPECT_EQ(calder::foreign_owner_refusal(dir.file("missing.csv")), "");
+  EXPECT_EQ(calder::output::foreign_owner_refusal(dir.file("mine.csv")), "");  // ours
+  EXPECT_EQ(calder::output::foreign_owner_refusal(dir.file("missing.csv")), "");
   if (::geteuid() == 0) {  // only root can give a file away
     ::chmod(dir.file("").c_str(), 01777);
     ASSERT_EQ(::lchown(dir.file("mine.csv").c_str(), 65534, 65534), 0);
-    EXPECT_NE(calder::foreign_owner_refusal(dir.file("mine.csv")).find("another user's"),
+    EXPECT_NE(calder::output::foreign_owner_refusal(dir.file("mine.csv")).find("another user's"),
               std::string::npos);
     ::chmod(dir.file("").c_str(), 0755);  // not sticky: the file's owner doesn't matter
-    EXPECT_EQ(calder::foreign_owner_refusal(dir.file("mine.csv")), "");
+    EXPECT_EQ(calder::output::foreign_owner_refusal(dir.file("mine.csv")), "");
   }
 }
 
@@ -697,9 +697,9 @@ TEST(CliInterruptDeathTest, WatchdogEndsALongComputation) {
       {
         const calder::app::InterruptGuard guard;
         {
-          const std::lock_guard<std::mutex> lock(calder::app::temporaries_lock());
+          const std::lock_guard<std::mutex> lock(calder::output::temporaries_lock());
           std::ofstream(temp) << "partial";
-          calder::app::register_temporary(temp, false);
+          calder::output::register_temporary(temp, false);
         }
         std::raise(SIGTERM);
         volatile double sink = 0.0;

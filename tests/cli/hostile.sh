@@ -83,7 +83,204 @@ signal_midway() {
   [ "$rc" = $((128 + $(kill -l "$signal"))) ] || fail "SIG$signal: exit $rc"
 }
 
+
+# patch_snapshot FILE TAG OFFSET FORMAT VALUE: rewrites a value inside a
+# snapshot's section TAG (OFFSET from the payload's end if negative, Python
+# struct FORMAT) and its CRC-32, so that the file passes every checksum.
+patch_snapshot() {
+  python3 - "$@" <<'PY'
+import struct, sys, zlib
+path, tag, offset, fmt, value = sys.argv[1:]
+data = bytearray(open(path, "rb").read())
+(count,) = struct.unpack_from("<I", data, 12)
+at = 16
+for _ in range(count):
+    length = struct.unpack_from("<Q", data, at + 8)[0]
+    if data[at:at + 4] == tag.encode():
+        start = at + 16
+        where = start + length + int(offset) if int(offset) < 0 else start + int(offset)
+        struct.pack_into(fmt, data, where, int(value))
+        struct.pack_into("<I", data, at + 4, zlib.crc32(data[start:start + length]))
+    at += 16 + ((length + 7) & ~7)
+open(path, "wb").write(data)
+PY
+}
+
 case "$case_name" in
+  # --- outputs of a run: one policy for all of them ------------------------------
+  save_over_scene_file)
+    cp "$(dirname "$calder")/../../scenes/example-2.1.toml" mine.toml 2> /dev/null ||
+      printf 'name = "mine"\nframes = 3\n[[bodies]]\nmass = 1\nposition = [1, 2]\n' > mine.toml
+    cp mine.toml kept.toml
+    run_calder run mine.toml --frames 3 --save mine.toml
+    expect_error 2 "--save 'mine.toml'" "the scene file" "refusing to overwrite it"
+    cmp -s mine.toml kept.toml || fail "the scene file was replaced"
+    printf 'x,y,vx,vy,mass\n1,2,0,0,1\n' > rows.csv
+    cp rows.csv kept.csv
+    run_calder run example-2.1 --frames 3 --state rows.csv --archive rows.csv
+    expect_error 2 "--archive 'rows.csv'" "--state"
+    cmp -s rows.csv kept.csv || fail "the --state file was replaced"
+    expect_no_temporaries
+    ;;
+  outputs_name_each_other)
+    for pair in "--trajectory t.out --save t.out" "--save t.out --archive t.out" \
+      "--trajectory t.out --archive t.out"; do
+      # shellcheck disable=SC2086
+      run_calder run example-2.1 --frames 3 $pair
+      expect_error 2 "is also" "give each output its own file"
+      [ ! -e t.out ] || fail "$pair: t.out was written"
+    done
+    ;;
+  archive_policy)
+    # The archive goes through the policy: never a device, never through a
+    # dangling link, never over a write-protected file or a file that isn't one.
+    run_calder run example-2.1 --frames 3 --archive /dev/null
+    expect_error 2 "/dev/null" "regular file"
+    ln -s victim.archive dangling
+    run_calder run example-2.1 --frames 3 --archive dangling
+    expect_error 2 "dangling" "symbolic link to a missing file"
+    [ ! -e victim.archive ] || fail "a file was created through a dangling link"
+    echo old > ro.archive && chmod 0444 ro.archive
+    run_calder run example-2.1 --frames 3 --archive ro.archive
+    expect_error 2 "ro.archive" "write-protected"
+    [ "$(cat ro.archive)" = old ] || fail "the write-protected file was replaced"
+    echo notes > notes.txt
+    run_calder run example-2.1 --frames 3 --archive notes.txt
+    expect_error 2 "notes.txt" "not a calder archive"
+    [ "$(cat notes.txt)" = notes ] || fail "a file that is not an archive was overwritten"
+    ;;
+  archive_kept_on_refusal)
+    # A run refused after its archive was named leaves the archive as it was;
+    # a second run appends after the first one's snapshots.
+    "$calder" run rain --frames 20 --archive a.archive --every 10 > /dev/null 2> err ||
+      fail "the first run failed"
+    cp a.archive kept.archive
+    run_calder run rain --frames 10000000 --archive a.archive --every 1
+    expect_error 2 "GB" "--no-work-limit"
+    cmp -s a.archive kept.archive || fail "a refused run changed the archive"
+    run_calder run rain --frames 20 --archive a.archive --device nothing
+    [ "$rc" = 2 ] || fail "a bad --device: exit $rc"
+    cmp -s a.archive kept.archive || fail "a run refused for its --device changed the archive"
+    "$calder" run example-2.1 --frames 5 --archive a.archive > /dev/null 2> err ||
+      fail "appending failed"
+    [ "$(stat -c %s a.archive)" -gt "$(stat -c %s kept.archive)" ] || fail "nothing was appended"
+    run_calder run a.archive --frames 5
+    [ "$rc" = 0 ] || fail "the appended archive does not open (exit $rc)"
+    grep -q "example-2.1" out || fail "the archive's last snapshot is not the appended run's"
+    ;;
+  archive_locked)
+    # Two writers of one archive: the second is refused at once, the first's
+    # archive stays whole.
+    "$calder" run rain --frames 10 --archive a.archive > /dev/null 2> err || fail "first run"
+    cp a.archive kept.archive
+    flock -x a.archive sleep 3 &
+    holder=$!
+    sleep 0.5
+    run_calder run rain --frames 10 --archive a.archive
+    kill "$holder" 2> /dev/null
+    wait "$holder" 2> /dev/null
+    expect_error 2 "a.archive" "locked"
+    cmp -s a.archive kept.archive || fail "the refused writer changed the archive"
+    ;;
+  save_planted_link)
+    # The snapshot's temporary has an unpredictable name made with O_EXCL: a
+    # link planted at the old fixed name (PATH.tmp-calder) is never followed.
+    echo victim > victim
+    ln -s victim out.snap.tmp-calder
+    run_calder run example-2.1 --frames 3 --save out.snap
+    [ "$rc" = 0 ] || fail "exit $rc"
+    [ "$(cat victim)" = victim ] || fail "the snapshot was written through a planted link"
+    [ -L out.snap.tmp-calder ] || fail "the planted link was moved"
+    run_calder run out.snap --frames 4
+    [ "$rc" = 0 ] || fail "the snapshot does not resume (exit $rc)"
+    ;;
+  # --- snapshots bounded as scene files are --------------------------------------
+  snapshot_threads)
+    "$calder" run example-2.9 --frames 3 --save s.snap > /dev/null 2> err || fail "save"
+    cp s.snap threads.snap
+    # WRLD ends: threads (u32), max_speed, time, steps.
+    patch_snapshot threads.snap WRLD -28 '<i' 100000
+    run_calder run threads.snap --frames 5
+    expect_error 2 "threads.snap" "threads must be between 0 and 1024"
+    cp s.snap frame.snap
+    patch_snapshot frame.snap SIMU 0 '<q' 9223372036854775806
+    run_calder run frame.snap
+    expect_error 2 "frame.snap" "frame must be between 0 and"
+    cp s.snap steps.snap
+    patch_snapshot steps.snap WRLD -8 '<q' 9223372036854775807
+    run_calder run steps.snap --frames 5
+    expect_error 2 "steps.snap" "step_count must be between 0 and 2^53"
+    ;;
+  archive_huge_sparse)
+    # A 10 GB sparse archive whose one record claims all of it: refused by
+    # the sizes, without reading it into memory.
+    python3 -c 'import struct, sys; sys.stdout.buffer.write(b"CALDARCH" + struct.pack(
+        "<II4sIqQ", 1, 0, b"SNAP", 0, 0, (10 << 30) - 40))' > big.archive
+    truncate -s 10G big.archive
+    run_measured run big.archive
+    expect_error 2 "big.archive" "no complete snapshot"
+    [ "$kb" -lt 400000 ] || fail "reading the archive took $kb KiB"
+    truncate -s 3G huge.snap
+    printf 'CALDSNAP' | dd of=huge.snap conv=notrunc status=none
+    run_measured run huge.snap
+    expect_error 2 "huge.snap" "larger than"
+    [ "$kb" -lt 400000 ] || fail "reading the snapshot took $kb KiB"
+    ;;
+  budget_bytes)
+    run_calder run rain --frames 10000000 --archive out.archive --every 1
+    expect_error 2 "would write about" "GB" "--no-work-limit"
+    [ ! -e out.archive ] || fail "the archive was created for a refused run"
+    ;;
+  budget_reset)
+    # A press that resets rebuilds the scene's million bodies, whatever
+    # --state started with: counted before the run.
+    printf 'name = "many"\nframes = 5\non_press = "reset"\n[[bodies]]\ncount = 1000000\n' > many.toml
+    printf 'x = { min = 0, max = 640 }\ny = { min = 0, max = 240 }\nmass = 1\n' >> many.toml
+    printf '[[fields]]\ntype = "mutual_attraction"\n' >> many.toml
+    printf 'x,y,vx,vy,mass\n1,2,0,0,1\n3,4,0,0,1\n' > three.csv
+    run_calder run many.toml --state three.csv --mouse-pressed 2-2
+    expect_error 2 "many.toml" "1000000 bodies" "--no-work-limit"
+    expect_within 20000
+    ;;
+  gpu_device_variable)
+    # An index that wraps to another device (2^32 is not device 0), a sign or
+    # a space: refused by name before anything runs.
+    expected="CALDER_GPU_DEVICE must be a device index"
+    run_calder devices
+    if grep -q "CALDER_WITH_GPU=OFF" out err; then expected="CALDER_WITH_GPU=OFF"; fi
+    for value in 4294967296 -1 ' 1' 1x; do
+      CALDER_GPU_DEVICE=$value run_calder run example-2.9 --frames 3 --device gpu
+      expect_error 2 "$expected"
+    done
+    ;;
+  gpu_too_many_bodies)
+    # Bodies that don't fit the device are refused before the run (exit 2),
+    # never a failure at frame 1 (exit 1); where they fit, the run succeeds.
+    printf 'name = "big"\nframes = 1\n[world]\narithmetic = "float64"\n[[bodies]]\n' > big.toml
+    printf 'count = 4500000\nx = { min = 0, max = 640 }\ny = { min = 0, max = 240 }\n' >> big.toml
+    printf 'mass = 1\n[[fields]]\ntype = "gravity"\n' >> big.toml
+    run_calder run big.toml --device gpu
+    if [ "$rc" != 0 ]; then expect_error 2 "--device gpu"; fi
+    ;;
+  # --- signals and pipes: one handler ----------------------------------------------
+  trajectory_signal)
+    # With --trajectory FILE the run still stops by calder's one handler:
+    # "interrupted", both temporaries removed.
+    signal_midway TERM './.t.csv.tmp-*' run rain --frames 40000 --trajectory t.csv \
+      --save s.snap --no-work-limit
+    grep -q "interrupted" err || fail "no 'interrupted' on stderr"
+    [ ! -e t.csv ] && [ ! -e s.snap ] || fail "an output appeared"
+    expect_no_temporaries
+    ;;
+  trajectory_pipe)
+    # The reader going away is the end it asked for: no message, ever.
+    for _ in $(seq 20); do
+      "$calder" run rain --frames 200 --trajectory - 2> err < /dev/null | head -c 100 > /dev/null
+      rc=${PIPESTATUS[0]}
+      [ ! -s err ] || fail "a message after the reader left: $(cat err)"
+      [ "$rc" = 0 ] || [ "$rc" = 141 ] || fail "exit $rc"
+    done
+    ;;
   # --- a crash on a small file ---------------------------------------------------
   deep_dotted_key) # scene file
     { echo 'name = "deep"'; printf 'a%.0s.' $(seq 50000); echo 'a = 1'; } > deep.toml

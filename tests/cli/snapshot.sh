@@ -112,7 +112,7 @@ case "$case_name" in
   archive_sigkill)
     # A long run killed with SIGKILL while it appends: the archive opens up to
     # its last complete snapshot, and goes on from it bit for bit.
-    "$calder" run rain --frames 10000000 --archive run.archive --every 3 > /dev/null 2> err \
+    "$calder" run rain --frames 10000000 --archive run.archive --every 3 --no-work-limit > /dev/null 2> err \
       < /dev/null &
     pid=$!
     for _ in $(seq 300); do
