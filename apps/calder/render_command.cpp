@@ -25,23 +25,6 @@ namespace calder::app {
 
 namespace {
 
-// Whether `name` is a frame of a render: frame-NNNNNN.png (six or more
-// digits), which a new render replaces.
-bool is_frame_name(const std::string& name) {
-  if (!name.starts_with("frame-") || !name.ends_with(".png")) return false;
-  const std::string digits = name.substr(6, name.size() - 10);
-  if (digits.size() < 6) return false;
-  for (const char c : digits) {
-    if (c < '0' || c > '9') return false;
-  }
-  return true;
-}
-
-std::string frame_name(std::int64_t index) {
-  char name[32];
-  std::snprintf(name, sizeof name, "frame-%06lld.png", static_cast<long long>(index));
-  return name;
-}
 std::string quoted(const std::string& text) { return "'" + detail::printable(text) + "'"; }
 
 std::int64_t parse_every(const std::string& text) {
@@ -328,7 +311,7 @@ void render_command(const RenderOptions& options, std::ostream& out, std::ostrea
   if (options.gif) gif.emplace(*options.gif, canvas->pixel_width(), canvas->pixel_height(), fps);
   std::optional<output::AtomicFolder> png;
   if (options.png)
-    png.emplace("--png", *options.png, is_frame_name, "a PNG file of an earlier render");
+    png.emplace("--png", *options.png, is_frame_png_name, "a PNG file of an earlier render");
 
   Progress progress(err, "render " + detail::printable(input.scene.name), frames,
                     !options.quiet && stderr_is_terminal());
@@ -341,7 +324,7 @@ void render_command(const RenderOptions& options, std::ostream& out, std::ostrea
       } catch (const Error& e) {
         throw RunError("--png: " + std::string(e.what()));
       }
-      png->write(frame_name(index), bytes);
+      png->write(frame_png_name(index), bytes);
     }
     if (gif) {
       try {

@@ -635,7 +635,7 @@ void sweep_command(const SweepOptions& options, std::ostream& out, std::ostream&
   if (::stat(options.scene.c_str(), &info) == 0) {
     inputs.push_back({"the scene file", options.scene});
   }
-  check_outputs(inputs, {{"--output", options.output}}, std::nullopt);
+  check_outputs(inputs, {{"--output", options.output}});
   OutputFile file(options.output);
   std::ostream& stream = file.is_stdout() ? out : file.stream();
 

@@ -298,4 +298,10 @@ class GifWriter {
 // allowed.
 void release_render_caches();
 
+// A folder of PNG frames (`calder render --png`, a sketch's `--png`): frame
+// `index` is frame-000001.png (six or more digits), and a new run replaces
+// only files of that name.
+[[nodiscard]] std::string frame_png_name(std::int64_t index);
+[[nodiscard]] bool is_frame_png_name(const std::string& name);
+
 }  // namespace calder

@@ -781,6 +781,19 @@ std::vector<unsigned char> Canvas::encode_png() const {
   return bytes;
 }
 
+std::string frame_png_name(std::int64_t index) {
+  char name[32];
+  std::snprintf(name, sizeof name, "frame-%06lld.png", static_cast<long long>(index));
+  return name;
+}
+
+bool is_frame_png_name(const std::string& name) {
+  if (!name.starts_with("frame-") || !name.ends_with(".png")) return false;
+  const std::string digits = name.substr(6, name.size() - 10);
+  if (digits.size() < 6) return false;
+  return std::all_of(digits.begin(), digits.end(), [](char c) { return c >= '0' && c <= '9'; });
+}
+
 void Canvas::write_png(const std::string& path) const {
   output::AtomicFile file("Canvas::write_png", path);
   PngSink sink{&file, nullptr, 0};

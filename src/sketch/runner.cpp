@@ -14,7 +14,7 @@
 #include <system_error>
 
 #include "calder/error.hpp"
-#include "calder/output_file.hpp"
+#include "calder/output.hpp"
 
 namespace calder {
 
@@ -234,15 +234,19 @@ void SketchRunner::setup() {
   sketch_.pmouse_ = sketch_.mouse_;
   sketch_.setup();
   (void)canvas();
+  // Every output checked against the others before any is made (the output
+  // module's policy, as for calder render).
+  std::vector<output::NamedPath> outputs;
+  if (options_.gif) outputs.push_back({"--gif", *options_.gif});
+  if (options_.png) outputs.push_back({"--png", *options_.png, output::Kind::folder});
+  if (options_.trajectory && *options_.trajectory != "-") {
+    outputs.push_back({"--trajectory", *options_.trajectory});
+  }
+  output::check_outputs({}, outputs);
   if (options_.gif)
     gif_.emplace(*options_.gif, canvas_->pixel_width(), canvas_->pixel_height(), options_.gif_fps);
   if (options_.png) {
-    std::error_code ec;
-    std::filesystem::create_directories(*options_.png, ec);
-    if (!std::filesystem::is_directory(*options_.png)) {
-      throw InputError("--png: cannot make the folder " + quote(*options_.png) +
-                       (ec ? ": " + ec.message() : std::string()));
-    }
+    png_.emplace("--png", *options_.png, is_frame_png_name, "a PNG file of an earlier run");
   }
   if (options_.trajectory) {
     if (sketch_.recorded_ == nullptr) {
@@ -299,12 +303,7 @@ void SketchRunner::write_outputs() {
   if (trajectory_) trajectory_->write(frame, *sketch_.recorded_);
   if (frame % options_.every != 0) return;
   if (gif_) gif_->add_frame(*canvas_);
-  if (options_.png) {
-    char name[32];
-    std::snprintf(name, sizeof name, "frame-%06" PRId64 ".png", frame);
-    canvas_->write_png((std::filesystem::path(*options_.png) / name).string());
-    ++pngs_;
-  }
+  if (png_) png_->write(frame_png_name(frame), canvas_->encode_png());
 }
 
 void SketchRunner::finish() {
@@ -313,8 +312,9 @@ void SketchRunner::finish() {
     throw InputError("--gif: no frame was drawn (--frames 0, or no_loop() in setup())");
   }
   if (gif_) gif_->finish();
+  if (png_) png_->commit();
   if (options_.trajectory && *options_.trajectory != "-") {
-    OutputFile file("--trajectory", *options_.trajectory);
+    output::AtomicFile file("--trajectory", *options_.trajectory);
     const std::string text = trajectory_text_.str();
     file.write_all(text.data(), text.size());
     file.commit();
@@ -326,7 +326,7 @@ void SketchRunner::finish() {
     std::string line = options_.program + ": " + std::to_string(sketch_.frame_count_) +
                        (sketch_.frame_count_ == 1 ? " frame" : " frames");
     if (gif_) line += ", " + *options_.gif;
-    if (options_.png) line += ", " + std::to_string(pngs_) + " PNGs in " + *options_.png;
+    if (options_.png) line += ", " + std::to_string(png_->count()) + " PNGs in " + *options_.png;
     std::cerr << line << '\n';
   }
 }

@@ -11,6 +11,7 @@
 #include <sstream>
 #include <string>
 
+#include "calder/output.hpp"
 #include "calder/render.hpp"
 #include "calder/sketch.hpp"
 #include "calder/trajectory.hpp"
@@ -69,12 +70,12 @@ class SketchRunner {
   const SketchOptions& options_;
   std::optional<Canvas> canvas_;
   std::optional<GifWriter> gif_;
+  std::optional<output::AtomicFolder> png_;
   std::ostringstream trajectory_text_;
   std::optional<TrajectoryWriter> trajectory_;
   std::string title_;
   Vec2 last_frame_mouse_{};
   bool live_pressed_ = false;
-  std::int64_t pngs_ = 0;
 };
 
 // A window for the sketch until it closes (window.cpp); throws
