@@ -2,8 +2,7 @@
 // calder: the book's sketches in C++, p5.js's setup() and draw() with its
 // drawing vocabulary, in a window or headless from the same program.
 //
-//   #include <calder/calder.hpp>
-//   #include <calder/sketch.hpp>
+//   (with calder/calder.hpp and calder/sketch.hpp included)
 //
 //   class Forces : public calder::Sketch {
 //     calder::World world{{.width = 640, .height = 240}};

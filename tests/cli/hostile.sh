@@ -760,9 +760,9 @@ case "$case_name" in
   unknown_command)
     run_calder runn example-2.1
     expect_error 2 "unknown command 'runn' (did you mean 'run'?)" \
-      "the commands are list, run, render, window and devices"
+      "the commands are list, run, render, window, devices and sweep"
     run_calder nosuch --help
-    expect_error 2 "unknown command 'nosuch'; the commands are list, run, render, window and devices"
+    expect_error 2 "unknown command 'nosuch'; the commands are list, run, render, window, devices and sweep"
     run_calder
     expect_error 2 "a command is required: list, run, render, window or devices"
     ;;

@@ -20,7 +20,8 @@ file(REMOVE_RECURSE "${sketch_dir}" "${render_dir}")
 file(MAKE_DIRECTORY "${WORK_DIR}")
 
 # Frame 1 from a run of one frame; frames 100 and 600 from a run of 600 that
-# writes every 100th (render names its images by their order, the sketch by
+# writes every 100th, each run into a folder of its own (a run replaces its
+# folder's frames; render names its images by their order, the sketch by
 # their frame).
 set(mouse_args)
 if(DEFINED MOUSE_PRESSED AND NOT MOUSE_PRESSED STREQUAL "")
@@ -28,7 +29,7 @@ if(DEFINED MOUSE_PRESSED AND NOT MOUSE_PRESSED STREQUAL "")
 endif()
 function(draw_both frames every)
   set(common --frames ${frames} --every ${every} --scale "${SCALE}" --seed 1 --quiet ${mouse_args})
-  execute_process(COMMAND "${EXAMPLE}" --png "${sketch_dir}" ${common} INPUT_FILE /dev/null
+  execute_process(COMMAND "${EXAMPLE}" --png "${sketch_dir}/${frames}" ${common} INPUT_FILE /dev/null
                   RESULT_VARIABLE result ERROR_VARIABLE error)
   if(NOT result STREQUAL "0")
     message(FATAL_ERROR "the sketch failed (${result}): ${error}")
@@ -41,11 +42,12 @@ function(draw_both frames every)
 endfunction()
 draw_both(1 1)
 draw_both(600 100)
-foreach(pair IN ITEMS "000001|1/frame-000001" "000100|600/frame-000001" "000600|600/frame-000006")
+foreach(pair IN ITEMS "1/frame-000001|1/frame-000001" "600/frame-000100|600/frame-000001"
+                      "600/frame-000600|600/frame-000006")
   string(REPLACE "|" ";" pair "${pair}")
   list(GET pair 0 frame)
   list(GET pair 1 rendered)
-  set(a "${sketch_dir}/frame-${frame}.png")
+  set(a "${sketch_dir}/${frame}.png")
   set(b "${render_dir}/${rendered}.png")
   execute_process(COMMAND "${IMAGE_CHECK}" "${a}" --equals "${b}" RESULT_VARIABLE result
                   OUTPUT_VARIABLE output ERROR_VARIABLE output)
