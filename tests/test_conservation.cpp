@@ -49,6 +49,8 @@ const char* name_of(Integrator integrator) {
       return "velocity_verlet";
     case Integrator::rk4:
       return "rk4";
+    case Integrator::ias15:
+      return "ias15";
   }
   return "?";
 }

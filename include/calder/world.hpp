@@ -24,6 +24,7 @@
 #include <string_view>
 #include <vector>
 
+#include "calder/adaptive.hpp"
 #include "calder/backends.hpp"
 #include "calder/body_columns.hpp"
 #include "calder/fields.hpp"
@@ -36,7 +37,15 @@ enum class Integrator {
   semi_implicit_euler,  // the book's update: v += a dt; x += v dt (first order, symplectic)
   velocity_verlet,      // kick-drift-kick, second order, symplectic for position forces
   rk4,                  // classic fourth-order Runge-Kutta
+  // IAS15 (Rein & Spiegel 2015): 15th-order Gauss-Radau predictor-corrector
+  // with an adaptive internal step, to machine precision for smooth forces.
+  // A step() still advances exactly dt: as many internal steps as needed,
+  // the last ending on the frame (calder/adaptive.hpp).
+  ias15,
 };
+
+// IAS15's default tolerance (WorldDef::tolerance): Rein & Spiegel's epsilon.
+inline constexpr double kDefaultTolerance = 1e-9;
 
 // When bodies are moved relative to the forces acting on them.
 enum class UpdateOrder {
@@ -128,6 +137,9 @@ struct WorldDef {
   double height = 240.0;
   double dt = 1.0;  // one frame, as in the book
   Integrator integrator = Integrator::semi_implicit_euler;
+  // ias15: the step criterion's epsilon (Pham, Rein & Spiegel 2024), > 0;
+  // smaller is more accurate and slower. Other integrators ignore it.
+  double tolerance = kDefaultTolerance;
   UpdateOrder update_order = UpdateOrder::simultaneous;
   Boundary boundary{};
   std::uint32_t seed = 0;  // seeds the world's random() and noise()
@@ -256,6 +268,19 @@ class World {
   void set_dt(double dt);
   [[nodiscard]] Integrator integrator() const { return def_.integrator; }
   void set_integrator(Integrator integrator) { def_.integrator = integrator; }
+  [[nodiscard]] double tolerance() const { return def_.tolerance; }
+  void set_tolerance(double tolerance);
+  // What the adaptive integrator counted since the world was made (or
+  // restored): internal steps, rejections, force evaluations, the smallest
+  // step and the closest approach (calder/adaptive.hpp).
+  [[nodiscard]] const AdaptiveStats& adaptive_stats() const { return adaptive_.stats; }
+  // What it carries from one step() to the next (the internal step, the
+  // predictor, the compensated sums): saved by snapshots so that a resumed
+  // run is the uninterrupted one bit for bit.
+  [[nodiscard]] const AdaptiveState& adaptive_state() const { return adaptive_; }
+  // Puts such a state back. Throws calder::InvalidArgument, changing
+  // nothing, for arrays that don't fit the bodies or a non-finite value.
+  void restore_adaptive(const AdaptiveState& state);
   [[nodiscard]] UpdateOrder update_order() const { return def_.update_order; }
   void set_update_order(UpdateOrder order) { def_.update_order = order; }
   [[nodiscard]] const Boundary& boundary() const { return def_.boundary; }
@@ -299,8 +324,13 @@ class World {
   void step_euler_simultaneous();
   void step_euler_sequential();
   void step_multistage();
+  void step_ias15();
+  void ias15_substeps(double frame_dt, std::span<const double> applied_ax,
+                      std::span<const double> applied_ay);
+  void advance_clock();
   void step_one();
   void check_step_settings() const;
+  void check_adaptive_settings() const;
   bool step_batch(int steps);
   void advance_noise(int steps);
   [[nodiscard]] std::string needs_plain_loops() const;  // "" or what the kernels lack
@@ -314,6 +344,7 @@ class World {
   Noise noise_;
   double time_ = 0.0;
   std::int64_t step_count_ = 0;
+  AdaptiveState adaptive_;
   // Scratch space of the multi-stage integrators, and the state saved at the
   // start of a step; kept to avoid reallocation.
   std::vector<double> scratch_;
