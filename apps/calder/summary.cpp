@@ -41,8 +41,34 @@ std::uint64_t summary_potential_cost(const World& world) {
   return potential_energy_cost(world, summary_potential_pairs);
 }
 
+// The energy error and, for ias15, what its steps were.
+void print_accuracy(std::ostream& out, const World& world, const EnergyWatch* energy) {
+  if (energy != nullptr && energy->active()) {
+    std::string text = format_number(energy->last_error()) + " (relative, since the start";
+    if (energy->first_frame_over() >= 0) {
+      text += "; worst " + format_number(energy->worst_error()) + ", past " +
+              format_number(energy->threshold()) + " from frame " +
+              std::to_string(energy->first_frame_over());
+    }
+    line(out, "energy error", text + ")");
+  } else if (energy != nullptr) {
+    line(out, "energy error", "n/a (the scene's fields or boundary don't conserve energy)");
+  }
+  if (world.integrator() != Integrator::ias15) return;
+  const AdaptiveStats& s = world.adaptive_stats();
+  line(out, "internal steps",
+       std::to_string(s.steps) + " (" + std::to_string(s.rejected) + " rejected, " +
+           std::to_string(s.force_evaluations) + " force evaluations)");
+  if (s.steps > 0) line(out, "smallest step", format_number(s.smallest_step));
+  if (std::isfinite(s.closest_approach)) {
+    line(out, "closest approach",
+         format_number(s.closest_approach) + " at t = " + format_number(s.closest_approach_time));
+  }
+}
+
 void print_summary(std::ostream& out, const Simulation& simulation, std::uint32_t seed,
-                   const std::string& source, const std::function<void()>& before_printing) {
+                   const std::string& source, const std::function<void()>& before_printing,
+                   const EnergyWatch* energy) {
   const World& world = simulation.world();
   const double kinetic = kinetic_energy(world);
   std::optional<PotentialEstimate> potential;
@@ -98,6 +124,7 @@ void print_summary(std::ostream& out, const Simulation& simulation, std::uint32_
   }
   line(out, "momentum", vector_text(momentum));
   line(out, "angular momentum", format_number(angular));
+  print_accuracy(out, world, energy);
   line(out, "state hash", state_hash_text(world));
 }
 

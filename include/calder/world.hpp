@@ -132,14 +132,23 @@ inline constexpr std::array<ArithmeticName, 3> kArithmeticNames{{
   return "?";
 }
 
+// Every integrator by its name, as scene files and the command line spell it.
+struct IntegratorName {
+  std::string_view name;
+  Integrator value;
+};
+inline constexpr std::array<IntegratorName, 4> kIntegratorNames{{
+    {"semi_implicit_euler", Integrator::semi_implicit_euler},
+    {"velocity_verlet", Integrator::velocity_verlet},
+    {"rk4", Integrator::rk4},
+    {"ias15", Integrator::ias15},
+}};
+
 struct WorldDef {
   double width = 640.0;
   double height = 240.0;
   double dt = 1.0;  // one frame, as in the book
   Integrator integrator = Integrator::semi_implicit_euler;
-  // ias15: the step criterion's epsilon (Pham, Rein & Spiegel 2024), > 0;
-  // smaller is more accurate and slower. Other integrators ignore it.
-  double tolerance = kDefaultTolerance;
   UpdateOrder update_order = UpdateOrder::simultaneous;
   Boundary boundary{};
   std::uint32_t seed = 0;  // seeds the world's random() and noise()
@@ -157,6 +166,9 @@ struct WorldDef {
   // process defaults, the kernels of calder::bulk and calder::nbody when the
   // program links them.
   Backends backends{};
+  // ias15: the step criterion's epsilon (Pham, Rein & Spiegel 2024), > 0;
+  // smaller is more accurate and slower. Other integrators ignore it.
+  double tolerance = kDefaultTolerance;
 };
 
 struct BodyDef {

@@ -178,7 +178,10 @@ void bind_world(py::module_& m) {
       .value("semi_implicit_euler", Integrator::semi_implicit_euler,
              "the book's update: v += a dt; x += v dt")
       .value("velocity_verlet", Integrator::velocity_verlet)
-      .value("rk4", Integrator::rk4);
+      .value("rk4", Integrator::rk4)
+      .value("ias15", Integrator::ias15,
+             "adaptive 15th order (Rein & Spiegel 2015): steps of dt made of internal steps "
+             "to the tolerance");
   py::enum_<UpdateOrder>(m, "UpdateOrder")
       .value("simultaneous", UpdateOrder::simultaneous)
       .value("sequential", UpdateOrder::sequential, "body by body, as example 2.9");
@@ -241,9 +244,11 @@ void bind_world(py::module_& m) {
   world
       .def(py::init([](double width, double height, double dt, Integrator integrator,
                        UpdateOrder update_order, const Boundary& boundary, std::uint32_t seed,
-                       Arithmetic arithmetic, int threads, const std::string& device) {
+                       Arithmetic arithmetic, int threads, double tolerance,
+                       const std::string& device) {
              WorldDef def{width,    height, dt,         integrator, update_order,
                           boundary, seed,   arithmetic, threads};
+             def.tolerance = tolerance;
              use_device(def, device);  // device.cpp: "gpu" steps on calder::gpu
              return std::make_unique<World>(def);
            }),
@@ -251,7 +256,7 @@ void bind_world(py::module_& m) {
            py::arg("integrator") = Integrator::semi_implicit_euler,
            py::arg("update_order") = UpdateOrder::simultaneous, py::arg("boundary") = Boundary{},
            py::arg("seed") = 0, py::arg("arithmetic") = Arithmetic::book, py::arg("threads") = 0,
-           py::arg("device") = "cpu")
+           py::arg("tolerance") = kDefaultTolerance, py::arg("device") = "cpu")
       // --- bodies ---
       .def(
           "add_body",
@@ -434,6 +439,8 @@ void bind_world(py::module_& m) {
       .def_property_readonly("step_count", &World::step_count)
       .def_property("dt", &World::dt, &World::set_dt)
       .def_property("integrator", &World::integrator, &World::set_integrator)
+      .def_property("tolerance", &World::tolerance, &World::set_tolerance,
+                    "ias15's step criterion (default 1e-9; smaller is more accurate)")
       .def_property("update_order", &World::update_order, &World::set_update_order)
       .def_property("boundary", &World::boundary, &World::set_boundary)
       .def_property("arithmetic", &World::arithmetic, &World::set_arithmetic)
