@@ -52,7 +52,8 @@ class EnergyMonitor {
  public:
   EnergyMonitor(const Simulation& simulation, const RunOptions& options, std::ostream& lines,
                 std::ostream& err)
-      : watch_(simulation.world(), options.energy_threshold),
+      : watch_(simulation.world(), options.energy_threshold.value_or(kDefaultEnergyThreshold)),
+        warn_(options.energy_threshold.has_value() || newtonian(simulation.world())),
         every_(options.energy_every),
         fail_(options.fail_on_energy),
         cheap_(potential_energy_cost(simulation.world(), summary_potential_pairs) <=
@@ -63,7 +64,7 @@ class EnergyMonitor {
     const std::int64_t frame = simulation.frame();
     const bool listed = every_ > 0 && frame % every_ == 0;
     if (!watch_.active() || !(cheap_ || listed)) return;
-    if (watch_.observe(simulation.world(), frame)) {
+    if (watch_.observe(simulation.world(), frame) && warn_) {
       err_ << "calder: warning: relative energy error " << format_number(watch_.last_error())
            << " passed " << format_number(watch_.threshold()) << " at frame " << frame
            << " (t = " << format_number(simulation.world().time()) << ")\n";
@@ -75,7 +76,7 @@ class EnergyMonitor {
     }
   }
   void finish(const std::string& source) const {
-    if (fail_ && watch_.first_frame_over() >= 0) {
+    if (fail_ && warn_ && watch_.first_frame_over() >= 0) {
       throw RunError(source + ": the relative energy error passed " +
                      format_number(watch_.threshold()) + " at frame " +
                      std::to_string(watch_.first_frame_over()) + " (--fail-on-energy)");
@@ -86,7 +87,21 @@ class EnergyMonitor {
  private:
   // Up to this many pair terms the error is measured after every frame.
   static constexpr std::uint64_t kEveryFrameTerms = 100'000;
+  // Warn unasked only about Newton's unclamped law: the book's clamped laws
+  // at dt = 1 never promised to conserve energy.
+  static bool newtonian(const World& world) {
+    for (const Field& field : world.fields()) {
+      const AttractionLaw* law = nullptr;
+      if (const auto* a = std::get_if<Attractor>(&field); a != nullptr && a->enabled) law = &a->law;
+      if (const auto* m = std::get_if<MutualAttraction>(&field); m != nullptr && m->enabled) {
+        law = &m->law;
+      }
+      if (law != nullptr && !law->custom && law->clamp == DistanceClamp::none) return true;
+    }
+    return false;
+  }
   EnergyWatch watch_;
+  bool warn_;
   std::int64_t every_;
   bool fail_;
   bool cheap_;

@@ -441,6 +441,22 @@ void bind_world(py::module_& m) {
       .def_property("integrator", &World::integrator, &World::set_integrator)
       .def_property("tolerance", &World::tolerance, &World::set_tolerance,
                     "ias15's step criterion (default 1e-9; smaller is more accurate)")
+      .def_property_readonly(
+          "adaptive_stats",
+          [](const World& w) {
+            const AdaptiveStats& s = w.adaptive_stats();
+            py::dict d;
+            d["steps"] = s.steps;
+            d["rejected"] = s.rejected;
+            d["force_evaluations"] = s.force_evaluations;
+            d["iterations"] = s.iterations;
+            d["smallest_step"] = s.smallest_step;
+            d["closest_approach"] = s.closest_approach;
+            d["closest_approach_time"] = s.closest_approach_time;
+            return d;
+          },
+          "What ias15 counted: steps, rejected, force_evaluations, iterations, smallest_step, "
+          "closest_approach (inf when not measured) and closest_approach_time")
       .def_property("update_order", &World::update_order, &World::set_update_order)
       .def_property("boundary", &World::boundary, &World::set_boundary)
       .def_property("arithmetic", &World::arithmetic, &World::set_arithmetic)
@@ -493,6 +509,21 @@ void bind_world(py::module_& m) {
   m.def("potential_energy", py::overload_cast<const World&>(&potential_energy), py::arg("world"),
         "Of the world's attractors and mutual attraction");
   m.def("total_energy", &total_energy, py::arg("world"));
+  m.def("conserves_energy", &conserves_energy, py::arg("world"),
+        "Whether the world's fields and boundary keep its total energy constant");
+  py::class_<EnergyWatch>(m, "EnergyWatch",
+                          "The relative energy error of a run since its start: observe(world, "
+                          "frame) after each frame returns True the first time it passes the "
+                          "threshold")
+      .def(py::init<const World&, double>(), py::arg("world"),
+           py::arg("threshold") = kDefaultEnergyThreshold)
+      .def("observe", &EnergyWatch::observe, py::arg("world"), py::arg("frame"))
+      .def_property_readonly("active", &EnergyWatch::active)
+      .def_property_readonly("start_energy", &EnergyWatch::start_energy)
+      .def_property_readonly("last_error", &EnergyWatch::last_error)
+      .def_property_readonly("worst_error", &EnergyWatch::worst_error)
+      .def_property_readonly("threshold", &EnergyWatch::threshold)
+      .def_property_readonly("first_frame_over", &EnergyWatch::first_frame_over);
   m.def("linear_momentum", &linear_momentum, py::arg("world"));
   m.def("angular_momentum", &angular_momentum, py::arg("world"), py::arg("origin") = Vec2{});
   m.def("center_of_mass", &center_of_mass, py::arg("world"));
