@@ -306,6 +306,60 @@ double closest_pair(std::span<const double> x, std::size_t n) {
   return std::sqrt(best2);
 }
 
+// One try of a step of h from time t: the predictor-corrector iterations,
+// then the step the criterion proposes.
+template <class Evaluate>
+double try_step(AdaptiveState& s, const Work& w, std::size_t n, double h, double t, double factor,
+                const Evaluate& evaluate) {
+  predict(s, w, h);
+  newton_from_powers(w);
+  double error = std::numeric_limits<double>::infinity();
+  double last_error = error;
+  for (int iteration = 0; iteration < kMaxIterations; ++iteration) {
+    if (error < kConverged || (iteration > 2 && last_error <= error)) break;
+    last_error = error;
+    double max_change = 0.0;
+    double max_a = 0.0;
+    for (std::size_t node = 1; node <= 7; ++node) {
+      at_node(w, s.position_compensation, s.velocity_compensation, node, h);
+      evaluate(w.x, w.v, w.a, t + h * kNode[node]);
+      max_change = correct(w, node, max_a);
+    }
+    error = max_a > 0.0 ? max_change / max_a : 0.0;
+    ++s.stats.iterations;
+  }
+  // A step far too long for the forces (the first one, which tries the
+  // whole frame) can send the iterations off to infinity: try a sixteenth.
+  for (const double v : w.b) {
+    if (!std::isfinite(v)) return kSafety * kSafety * h;
+  }
+  return proposed_step(w, n, h, factor);
+}
+
+// The step of h from time t is taken: the state moves to its end, and what
+// the next step needs (its length, the polynomial) and the counts are kept.
+void accept_step(AdaptiveState& s, const Work& w, std::size_t n, double h, double natural,
+                 double proposed, double t) {
+  finish_step(w, s.position_compensation, s.velocity_compensation, h);
+  // The frame's end may have shortened the step: grow from the natural one.
+  const double grown = (h < natural ? natural : h) / kSafety;
+  s.next_step = std::min(proposed, grown);
+  s.last_step = h;
+  s.coefficients.assign(w.b.begin(), w.b.end());
+  s.correction.resize(w.b.size());
+  for (std::size_t k = 0; k < w.b.size(); ++k) s.correction[k] = w.b[k] - w.predicted[k];
+  AdaptiveStats& stats = s.stats;
+  ++stats.steps;
+  stats.smallest_step = std::min(stats.smallest_step, h);
+  if (n >= 2 && n <= kClosestApproachBodies) {
+    const double d = closest_pair(w.x0, n);
+    if (d < stats.closest_approach) {
+      stats.closest_approach = d;
+      stats.closest_approach_time = t + h;
+    }
+  }
+}
+
 void reset_carried(AdaptiveState& s, std::size_t size, bool keep_step) {
   s.position_compensation.assign(size, 0.0);
   s.velocity_compensation.assign(size, 0.0);
@@ -369,32 +423,8 @@ void World::ias15_substeps(double frame_dt, std::span<const double> applied_ax,
     accumulate_fields(context(view, t), 0, n, a.first(n), a.subspan(n));
     ++stats.force_evaluations;
   };
-  // One try of a step of h from time t: the predictor-corrector iterations,
-  // then the step the criterion proposes.
   const auto attempt = [&](double h, double t) {
-    predict(s, w, h);
-    newton_from_powers(w);
-    double error = std::numeric_limits<double>::infinity();
-    double last_error = error;
-    for (int iteration = 0; iteration < kMaxIterations; ++iteration) {
-      if (error < kConverged || (iteration > 2 && last_error <= error)) break;
-      last_error = error;
-      double max_change = 0.0;
-      double max_a = 0.0;
-      for (std::size_t node = 1; node <= 7; ++node) {
-        at_node(w, s.position_compensation, s.velocity_compensation, node, h);
-        evaluate(w.x, w.v, w.a, t + h * kNode[node]);
-        max_change = correct(w, node, max_a);
-      }
-      error = max_a > 0.0 ? max_change / max_a : 0.0;
-      ++stats.iterations;
-    }
-    // A step far too long for the forces (the first one, which tries the
-    // whole frame) can send the iterations off to infinity: try a sixteenth.
-    for (const double v : w.b) {
-      if (!std::isfinite(v)) return kSafety * kSafety * h;
-    }
-    return proposed_step(w, n, h, factor);
+    return try_step(s, w, n, h, t, factor, evaluate);
   };
 
   double tau = 0.0;  // into the frame
@@ -431,23 +461,7 @@ void World::ias15_substeps(double frame_dt, std::span<const double> applied_ax,
       }
       proposed = attempt(h, t);
     }
-    finish_step(w, s.position_compensation, s.velocity_compensation, h);
-    // The frame's end may have shortened the step: grow from the natural one.
-    const double grown = (h < natural ? natural : h) / kSafety;
-    s.next_step = std::min(proposed, grown);
-    s.last_step = h;
-    s.coefficients.assign(w.b.begin(), w.b.end());
-    s.correction.resize(w.b.size());
-    for (std::size_t k = 0; k < w.b.size(); ++k) s.correction[k] = w.b[k] - w.predicted[k];
-    ++stats.steps;
-    stats.smallest_step = std::min(stats.smallest_step, h);
-    if (n >= 2 && n <= kClosestApproachBodies) {
-      const double d = closest_pair(w.x0, n);
-      if (d < stats.closest_approach) {
-        stats.closest_approach = d;
-        stats.closest_approach_time = t + h;
-      }
-    }
+    accept_step(s, w, n, h, natural, proposed, t);
     if (last) break;
     tau += h;
   }
