@@ -472,6 +472,16 @@ Scene rain() {
 // G is kUnit^3, so that its unit of time (and so its times) stay the
 // literature's; velocities are the literature's times kUnit.
 
+// Newton's law as a scene file's `clamp = "none"` reads it (min and max
+// keep their defaults, unused without a clamp).
+AttractionLaw newton(double G, double softening = 0.0) {
+  AttractionLaw law;
+  law.G = G;
+  law.clamp = DistanceClamp::none;
+  law.softening = softening;
+  return law;
+}
+
 Scene classic(std::string name, std::string description, double unit) {
   Scene s = base(std::move(name), std::move(description));
   s.world.width = 640.0;
@@ -482,7 +492,7 @@ Scene classic(std::string name, std::string description, double unit) {
   s.look.trail_alpha = 20.0;
   s.look.body_gray = 0.0;
   s.look.body_alpha = 200.0;
-  s.fields.push_back(field(MutualAttraction{.law = AttractionLaw::newtonian(unit * unit * unit)}));
+  s.fields.push_back(field(MutualAttraction{.law = newton(unit * unit * unit)}));
   return s;
 }
 
@@ -538,7 +548,7 @@ Scene kepler() {
   s.fields.clear();
   s.fields.push_back(field(Attractor{.position = {0.0, 0.0},
                                      .mass = 1.0,
-                                     .law = AttractionLaw::newtonian(kUnit * kUnit * kUnit)}));
+                                     .law = newton(kUnit * kUnit * kUnit)}));
   // (1 - e) kUnit and sqrt((1 + e) / (1 - e)) kUnit, the latter rounded once.
   s.bodies.push_back(one_body({10.0, 0.0}, 1.0, fixed_radius(5.0), {0.0, std::sqrt(190000.0)}));
   s.origin = {480.0, 240.0};
@@ -563,7 +573,7 @@ Scene plummer_cluster() {
   s.bodies.push_back(stars);
   s.fields.clear();
   s.fields.push_back(field(MutualAttraction{
-      .law = AttractionLaw::newtonian(0.05 * kUnit * kUnit * kUnit, 0.2 * kUnit)}));
+      .law = newton(0.05 * kUnit * kUnit * kUnit, 0.2 * kUnit)}));
   s.world.dt = 0.05;
   s.frames = 200;
   return s;

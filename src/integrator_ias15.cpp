@@ -15,6 +15,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
 #include <limits>
 #include <span>
 #include <string>
@@ -106,6 +107,9 @@ constexpr double kShift[7][7] = {
 // again; the next step grows by at most its inverse (Rein & Spiegel 2015).
 constexpr double kSafety = 0.25;
 constexpr int kMaxIterations = 12;
+// A frame that needs more internal steps than this is an error, not a hang
+// (a dt of 1e300 over a bound orbit).
+constexpr std::int64_t kMaxStepsPerFrame = 100'000;
 // The predictor-corrector has converged when the last coefficient changes
 // by less than this, relative to the largest acceleration.
 constexpr double kConverged = 1e-16;
@@ -428,7 +432,12 @@ void World::ias15_substeps(double frame_dt, std::span<const double> applied_ax,
   };
 
   double tau = 0.0;  // into the frame
-  for (;;) {
+  for (std::int64_t taken = 0;; ++taken) {
+    if (taken == kMaxStepsPerFrame) {
+      throw RunError("World::step: ias15 needs more than " + std::to_string(kMaxStepsPerFrame) +
+                     " internal steps for one frame of dt = " + detail::format_number(frame_dt) +
+                     " (at time " + detail::format_number(time_ + tau) + "): use a smaller dt");
+    }
     const double remaining = frame_dt - tau;
     const double natural = s.next_step > 0.0 ? s.next_step : frame_dt;
     double h = natural;

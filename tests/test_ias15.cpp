@@ -157,4 +157,13 @@ TEST(Ias15, AHeadOnCollisionOfPointMassesIsAnErrorNotANaN) {
   EXPECT_EQ(world.step_count(), 0);
 }
 
+// A frame far too long for a bound orbit: an error after 100,000 internal
+// steps, not a hang.
+TEST(Ias15, AFrameThatNeedsTooManyStepsIsAnError) {
+  World world = kepler_world(0.5, 1e300);
+  calder::test::expect_error([&] { world.step(); }, {"internal steps", "smaller dt"});
+  EXPECT_EQ(world.step_count(), 0);
+  EXPECT_EQ(world.position(world.body(0)).x, 0.5);
+}
+
 }  // namespace
