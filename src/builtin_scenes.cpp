@@ -546,9 +546,8 @@ Scene kepler() {
   Scene s = classic("kepler", "A Kepler orbit of eccentricity 0.9 around a fixed mass: ten orbits",
                     kUnit);
   s.fields.clear();
-  s.fields.push_back(field(Attractor{.position = {0.0, 0.0},
-                                     .mass = 1.0,
-                                     .law = newton(kUnit * kUnit * kUnit)}));
+  s.fields.push_back(
+      field(Attractor{.position = {0.0, 0.0}, .mass = 1.0, .law = newton(kUnit * kUnit * kUnit)}));
   // (1 - e) kUnit and sqrt((1 + e) / (1 - e)) kUnit, the latter rounded once.
   s.bodies.push_back(one_body({10.0, 0.0}, 1.0, fixed_radius(5.0), {0.0, std::sqrt(190000.0)}));
   s.origin = {480.0, 240.0};
@@ -572,8 +571,8 @@ Scene plummer_cluster() {
   stars.radius = radius_per_sqrt_mass(3.0);
   s.bodies.push_back(stars);
   s.fields.clear();
-  s.fields.push_back(field(MutualAttraction{
-      .law = newton(0.05 * kUnit * kUnit * kUnit, 0.2 * kUnit)}));
+  s.fields.push_back(
+      field(MutualAttraction{.law = newton(0.05 * kUnit * kUnit * kUnit, 0.2 * kUnit)}));
   s.world.dt = 0.05;
   s.frames = 200;
   return s;

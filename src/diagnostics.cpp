@@ -232,6 +232,13 @@ EnergyWatch::EnergyWatch(const World& world, double threshold) : threshold_(thre
   active_ = std::isfinite(start_);
 }
 
+EnergyWatch::EnergyWatch(const World& world, double threshold, double start_energy)
+    : threshold_(threshold) {
+  if (!conserves_energy(world)) return;
+  start_ = start_energy;
+  active_ = std::isfinite(start_);
+}
+
 bool EnergyWatch::observe(const World& world, std::int64_t frame) {
   if (!active_) return false;
   const double change = std::fabs(total_energy(world) - start_);

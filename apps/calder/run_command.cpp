@@ -6,6 +6,7 @@
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <cctype>
+#include <limits>
 #include <string>
 
 #include "calder/error.hpp"
@@ -52,7 +53,8 @@ class EnergyMonitor {
  public:
   EnergyMonitor(const Simulation& simulation, const RunOptions& options, std::ostream& lines,
                 std::ostream& err)
-      : watch_(simulation.world(), options.energy_threshold.value_or(kDefaultEnergyThreshold)),
+      : watch_(simulation.world(), options.energy_threshold.value_or(kDefaultEnergyThreshold),
+               start_energy(simulation)),
         warn_(options.energy_threshold.has_value() || newtonian(simulation.world())),
         every_(options.energy_every),
         fail_(options.fail_on_energy),
@@ -87,6 +89,17 @@ class EnergyMonitor {
  private:
   // Up to this many pair terms the error is measured after every frame.
   static constexpr std::uint64_t kEveryFrameTerms = 100'000;
+  // The energy at the run's first frame: a run resumed from a snapshot
+  // builds its scene's start again (the snapshot holds the scene and seed).
+  static double start_energy(const Simulation& simulation) {
+    try {
+      if (simulation.frame() == 0) return total_energy(simulation.world());
+      const Simulation start(simulation.scene());
+      return total_energy(start.world());
+    } catch (const Error&) {
+      return std::numeric_limits<double>::quiet_NaN();  // no known potential: not measured
+    }
+  }
   // Warn unasked only about Newton's unclamped law: the book's clamped laws
   // at dt = 1 never promised to conserve energy.
   static bool newtonian(const World& world) {

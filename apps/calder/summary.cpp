@@ -42,15 +42,15 @@ std::uint64_t summary_potential_cost(const World& world) {
 }
 
 // The energy error and, for ias15, what its steps were.
-void print_accuracy(std::ostream& out, const World& world, const EnergyWatch* energy) {
-  if (energy != nullptr && energy->active()) {
-    std::string text = format_number(energy->last_error()) + " (relative, since the start";
-    if (energy->first_frame_over() >= 0) {
-      text += "; worst " + format_number(energy->worst_error()) + ", past " +
-              format_number(energy->threshold()) + " from frame " +
-              std::to_string(energy->first_frame_over());
-    }
-    line(out, "energy error", text + ")");
+// `total`: the total energy now, when summed exactly.
+void print_accuracy(std::ostream& out, const World& world, const EnergyWatch* energy,
+                    std::optional<double> total) {
+  if (energy != nullptr && energy->active() && total) {
+    const double start = energy->start_energy();
+    const double change = std::fabs(*total - start);
+    line(out, "energy error",
+         format_number(start != 0.0 ? change / std::fabs(start) : change) +
+             " (relative, since frame 0)");
   } else if (energy != nullptr) {
     line(out, "energy error", "n/a (the scene's fields or boundary don't conserve energy)");
   }
@@ -124,7 +124,9 @@ void print_summary(std::ostream& out, const Simulation& simulation, std::uint32_
   }
   line(out, "momentum", vector_text(momentum));
   line(out, "angular momentum", format_number(angular));
-  print_accuracy(out, world, energy);
+  print_accuracy(out, world, energy,
+                 potential && potential->exact ? std::optional<double>(kinetic + potential->value)
+                                               : std::nullopt);
   line(out, "state hash", state_hash_text(world));
 }
 

@@ -71,6 +71,9 @@ class EnergyWatch {
   // Records the energy now; inactive (measures nothing) when the world
   // doesn't conserve energy or its potential isn't known.
   explicit EnergyWatch(const World& world, double threshold = kDefaultEnergyThreshold);
+  // Measures from a start energy given (a run resumed from a snapshot: the
+  // energy of its scene's first frame); inactive when not finite.
+  EnergyWatch(const World& world, double threshold, double start_energy);
   // Measures the error now; true only the first time it passes the threshold.
   bool observe(const World& world, std::int64_t frame);
   [[nodiscard]] bool active() const { return active_; }
