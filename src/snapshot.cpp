@@ -34,7 +34,7 @@ using snapshot_detail::Out;
 template <class E>
 inline constexpr E kLast{};
 template <>
-inline constexpr Integrator kLast<Integrator> = Integrator::ias15;
+inline constexpr Integrator kLast<Integrator> = Integrator::yoshida6;
 template <>
 inline constexpr UpdateOrder kLast<UpdateOrder> = UpdateOrder::sequential;
 template <>
@@ -64,6 +64,7 @@ inline constexpr BodyGroup::Layout kLast<BodyGroup::Layout> = BodyGroup::Layout:
 
 // The codes are part of the format: an enumerator moved or inserted shows here.
 static_assert(static_cast<int>(Integrator::rk4) == 2 && static_cast<int>(Integrator::ias15) == 3 &&
+              static_cast<int>(Integrator::yoshida6) == 5 &&
               static_cast<int>(BoundaryKind::wrap) == 2);
 static_assert(static_cast<int>(Arithmetic::float32) == 2 &&
               static_cast<int>(DistanceClamp::none) == 2);

@@ -51,6 +51,10 @@ const char* name_of(Integrator integrator) {
       return "rk4";
     case Integrator::ias15:
       return "ias15";
+    case Integrator::yoshida4:
+      return "yoshida4";
+    case Integrator::yoshida6:
+      return "yoshida6";
   }
   return "?";
 }

@@ -72,7 +72,7 @@ Integrator parse_integrator(const std::string& flag, const std::string& text) {
   for (const IntegratorName& i : kIntegratorNames) {
     if (text == i.name) return i.value;
   }
-  bad(flag, "semi_implicit_euler, velocity_verlet, rk4 or ias15", text);
+  bad(flag, "semi_implicit_euler, velocity_verlet, rk4, ias15, yoshida4 or yoshida6", text);
 }
 
 std::uint32_t parse_seed(const std::string& flag, const std::string& text) {

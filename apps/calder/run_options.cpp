@@ -56,7 +56,8 @@ const SceneFlag kSceneFlags[] = {
        scene.input.moves.clear();
      }},
     {"--integrator", "NAME",
-     "semi_implicit_euler, velocity_verlet, rk4 or ias15, replacing the scene's (see "
+     "semi_implicit_euler, velocity_verlet, rk4, ias15, yoshida4 or yoshida6, replacing the "
+     "scene's (see "
      "docs/SCENES.md)",
      &InputOptions::integrator,
      [](const std::string& flag, const std::string& text, Scene& scene) {

@@ -42,6 +42,11 @@ enum class Integrator {
   // A step() still advances exactly dt: as many internal steps as needed,
   // the last ending on the frame (calder/adaptive.hpp).
   ias15,
+  // Yoshida's (1990) compositions of velocity Verlet: 4th order (3 substeps)
+  // and 6th order (7 substeps, his solution A); fixed step, symplectic for
+  // position forces, for long smooth runs.
+  yoshida4,
+  yoshida6,
 };
 
 // IAS15's default tolerance (WorldDef::tolerance): Rein & Spiegel's epsilon.
@@ -137,11 +142,13 @@ struct IntegratorName {
   std::string_view name;
   Integrator value;
 };
-inline constexpr std::array<IntegratorName, 4> kIntegratorNames{{
+inline constexpr std::array<IntegratorName, 6> kIntegratorNames{{
     {"semi_implicit_euler", Integrator::semi_implicit_euler},
     {"velocity_verlet", Integrator::velocity_verlet},
     {"rk4", Integrator::rk4},
     {"ias15", Integrator::ias15},
+    {"yoshida4", Integrator::yoshida4},
+    {"yoshida6", Integrator::yoshida6},
 }};
 
 struct WorldDef {

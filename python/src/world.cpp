@@ -181,7 +181,9 @@ void bind_world(py::module_& m) {
       .value("rk4", Integrator::rk4)
       .value("ias15", Integrator::ias15,
              "adaptive 15th order (Rein & Spiegel 2015): steps of dt made of internal steps "
-             "to the tolerance");
+             "to the tolerance")
+      .value("yoshida4", Integrator::yoshida4, "4th-order symplectic composition of leapfrog")
+      .value("yoshida6", Integrator::yoshida6, "6th-order symplectic composition of leapfrog");
   py::enum_<UpdateOrder>(m, "UpdateOrder")
       .value("simultaneous", UpdateOrder::simultaneous)
       .value("sequential", UpdateOrder::sequential, "body by body, as example 2.9");
