@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 // The built-in scenes: every example of chapter 2 with the book's constants,
 // initial state and order of operations (shared/spec/chapter2.md).
+#include <cmath>
 #include <functional>
 #include <string>
 #include <string_view>
@@ -468,6 +469,117 @@ Scene rain() {
   return s;
 }
 
+// --- classic problems of celestial mechanics, integrated with ias15 ---
+// Lengths are in pixels: each problem's unit of length is kUnit pixels and
+// G is kUnit^3, so that its unit of time (and so its times) stay the
+// literature's; velocities are the literature's times kUnit.
+
+// Newton's law as a scene file's `clamp = "none"` reads it (min and max
+// keep their defaults, unused without a clamp).
+AttractionLaw newton(double G, double softening = 0.0) {
+  AttractionLaw law;
+  law.G = G;
+  law.clamp = DistanceClamp::none;
+  law.softening = softening;
+  return law;
+}
+
+Scene classic(std::string name, std::string description, double unit) {
+  Scene s = base(std::move(name), std::move(description));
+  s.world.width = 640.0;
+  s.world.height = 480.0;
+  s.world.integrator = Integrator::ias15;
+  s.origin = {320.0, 240.0};
+  s.look.trails = true;
+  s.look.trail_alpha = 20.0;
+  s.look.body_gray = 0.0;
+  s.look.body_alpha = 200.0;
+  s.fields.push_back(field(MutualAttraction{.law = newton(unit * unit * unit)}));
+  return s;
+}
+
+// Burrau's problem (1913): masses 3, 4 and 5 at rest at the corners of a
+// 3-4-5 right triangle, each opposite the side of its length. Szebehely and
+// Peters (1967) integrated it to t = 70: after many close approaches the
+// lightest body escapes and the other two leave as a binary.
+Scene pythagorean() {
+  constexpr double kUnit = 40.0;
+  Scene s = classic("pythagorean",
+                    "Burrau's Pythagorean three-body problem: masses 3, 4, 5 at rest until t = 70; "
+                    "the lightest escapes",
+                    kUnit);
+  s.bodies.push_back(one_body({1.0 * kUnit, 3.0 * kUnit}, 3.0, radius_per_sqrt_mass(3.0)));
+  s.bodies.push_back(one_body({-2.0 * kUnit, -1.0 * kUnit}, 4.0, radius_per_sqrt_mass(3.0)));
+  s.bodies.push_back(one_body({1.0 * kUnit, -1.0 * kUnit}, 5.0, radius_per_sqrt_mass(3.0)));
+  s.world.dt = 0.1;
+  s.frames = 700;
+  return s;
+}
+
+// The figure-eight choreography (Moore 1993; Chenciner and Montgomery 2000):
+// three equal masses chase each other along one figure eight. Initial
+// conditions and period to 8 digits from Chenciner and Montgomery (Annals of
+// Mathematics 152, 2000), after Simo: x1 = -x2 = (0.97000436, -0.24308753),
+// x3 = 0, v3 = (-0.93240737, -0.86473146), v1 = v2 = -v3 / 2; period
+// 6.32591398. A frame is a 120th of the period: 1200 frames, ten periods.
+Scene figure_eight() {
+  constexpr double kUnit = 100.0;
+  Scene s = classic("figure-eight",
+                    "The figure-eight choreography of three equal masses (Chenciner and "
+                    "Montgomery): ten periods",
+                    kUnit);
+  const Vec2 x1{97.000436, -24.308753};  // the digits above, times kUnit
+  const Vec2 v3{-93.240737, -86.473146};
+  const Vec2 v1{-v3.x / 2.0, -v3.y / 2.0};
+  s.bodies.push_back(one_body(x1, 1.0, fixed_radius(6.0), v1));
+  s.bodies.push_back(one_body({-x1.x, -x1.y}, 1.0, fixed_radius(6.0), v1));
+  s.bodies.push_back(one_body({0.0, 0.0}, 1.0, fixed_radius(6.0), v3));
+  s.world.dt = 6.32591398 / 120.0;
+  s.frames = 1200;
+  return s;
+}
+
+// The Kepler problem: a body around a fixed unit mass (an attractor), on an
+// orbit of semi-major axis 1 and eccentricity 0.9 (period 2 pi), from its
+// pericentre (1 - e, 0) at the vis-viva speed sqrt((1 + e) / (1 - e)). A
+// frame is a 60th of the period: 600 frames, ten orbits.
+Scene kepler() {
+  constexpr double kUnit = 100.0;
+  Scene s = classic("kepler", "A Kepler orbit of eccentricity 0.9 around a fixed mass: ten orbits",
+                    kUnit);
+  s.fields.clear();
+  s.fields.push_back(
+      field(Attractor{.position = {0.0, 0.0}, .mass = 1.0, .law = newton(kUnit * kUnit * kUnit)}));
+  // (1 - e) kUnit and sqrt((1 + e) / (1 - e)) kUnit, the latter rounded once.
+  s.bodies.push_back(one_body({10.0, 0.0}, 1.0, fixed_radius(5.0), {0.0, std::sqrt(190000.0)}));
+  s.origin = {480.0, 240.0};
+  s.world.dt = 2.0 * 3.141592653589793 / 60.0;
+  s.frames = 600;
+  return s;
+}
+
+// A star cluster: 16 bodies of random mass at rest in a square collapse
+// under their mutual attraction, softened (Plummer 1911) so that close
+// passages stay smooth and ias15's steps stay long.
+Scene plummer_cluster() {
+  constexpr double kUnit = 100.0;
+  Scene s = classic("plummer-cluster",
+                    "A cold cluster of 16 bodies collapsing under Plummer-softened gravity", kUnit);
+  BodyGroup stars;
+  stars.count = 16;
+  stars.x = Draw::uniform(-kUnit, kUnit);
+  stars.y = Draw::uniform(-kUnit, kUnit);
+  stars.mass = Draw::uniform(0.5, 1.5);
+  stars.radius = radius_per_sqrt_mass(3.0);
+  s.bodies.push_back(stars);
+  s.fields.clear();
+  s.fields.push_back(
+      field(MutualAttraction{.law = newton(0.05 * kUnit * kUnit * kUnit, 0.2 * kUnit)}));
+  s.world.dt = 0.05;
+  s.frames = 200;
+  return s;
+}
+
 struct Entry {
   const char* name;
   Scene (*make)();
@@ -499,6 +611,10 @@ const Entry kScenes[] = {
     {"exercise-2.15", exercise_2_15},
     {"exercise-2.16", exercise_2_16},
     {"rain", rain},
+    {"pythagorean", pythagorean},
+    {"figure-eight", figure_eight},
+    {"kepler", kepler},
+    {"plummer-cluster", plummer_cluster},
 };
 
 }  // namespace

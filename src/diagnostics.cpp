@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <type_traits>
 #include <variant>
 #include <vector>
 
@@ -217,6 +218,48 @@ DisplayedEnergy displayed_energy(const World& world, std::uint64_t max_pairs) {
     e.why_not = error.what();  // a field without a potential (wind, a custom law)
   }
   return e;
+}
+
+bool conserves_energy(const World& world) {
+  if (world.boundary().kind != BoundaryKind::none || world.max_speed() > 0.0) return false;
+  for (const Field& field : world.fields()) {
+    const bool conservative = std::visit(
+        [](const auto& f) {
+          using F = std::decay_t<decltype(f)>;
+          if (!f.enabled) return true;
+          if constexpr (std::is_same_v<F, Gravity>) return true;
+          if constexpr (std::is_same_v<F, Attractor> || std::is_same_v<F, MutualAttraction>) {
+            return !f.law.custom;
+          }
+          return false;
+        },
+        field);
+    if (!conservative) return false;
+  }
+  return true;
+}
+
+EnergyWatch::EnergyWatch(const World& world, double threshold) : threshold_(threshold) {
+  if (!conserves_energy(world)) return;
+  start_ = total_energy(world);
+  active_ = std::isfinite(start_);
+}
+
+EnergyWatch::EnergyWatch(const World& world, double threshold, double start_energy)
+    : threshold_(threshold) {
+  if (!conserves_energy(world)) return;
+  start_ = start_energy;
+  active_ = std::isfinite(start_);
+}
+
+bool EnergyWatch::observe(const World& world, std::int64_t frame) {
+  if (!active_) return false;
+  const double change = std::fabs(total_energy(world) - start_);
+  last_ = start_ != 0.0 ? change / std::fabs(start_) : change;
+  if (!(last_ <= worst_)) worst_ = last_;  // a NaN is the worst
+  if (first_over_ >= 0 || !(last_ > threshold_ || std::isnan(last_))) return false;
+  first_over_ = frame;
+  return true;
 }
 
 }  // namespace calder

@@ -2,6 +2,7 @@
 // The world's integrators: the book's semi-implicit Euler (simultaneous and
 // sequential), velocity Verlet and classic RK4.
 #include <algorithm>
+#include <span>
 
 #include "calder/world.hpp"
 #include "integrate.hpp"
@@ -116,6 +117,15 @@ void rk4(BodyColumnsOf<std::vector<double>>& b, const Stage& s, const Stage& sum
   }
 }
 
+// Yoshida (1990, Phys. Lett. A 150, 262): velocity Verlet steps of these
+// fractions of dt compose to 4th order (w1, w0, w1 with w1 = 1 / (2 - 2^(1/3)),
+// w0 = 1 - 2 w1) and to 6th order (his solution A: w3, w2, w1, w0, w1, w2, w3,
+// w0 = 1 - 2 (w1 + w2 + w3)).
+constexpr double kYoshida4[3] = {1.3512071919596576, -1.7024143839193153, 1.3512071919596576};
+constexpr double kYoshida6[7] = {0.784513610477560, 0.235573213359357, -1.17767998417887,
+                                 1.315186320683906, -1.17767998417887, 0.235573213359357,
+                                 0.784513610477560};
+
 }  // namespace
 
 void World::step_multistage() {
@@ -154,6 +164,16 @@ void World::step_multistage() {
   evaluate(time_);
   if (def_.integrator == Integrator::velocity_verlet) {
     velocity_verlet(bodies_, s, time_, dt, evaluate);
+  } else if (def_.integrator == Integrator::yoshida4 || def_.integrator == Integrator::yoshida6) {
+    const std::span<const double> weights = def_.integrator == Integrator::yoshida4
+                                                ? std::span<const double>(kYoshida4)
+                                                : std::span<const double>(kYoshida6);
+    double t = time_;
+    // Each substep starts from the accelerations the last one ended with.
+    for (const double w : weights) {
+      velocity_verlet(bodies_, s, t, w * dt, evaluate);
+      t += w * dt;
+    }
   } else {
     rk4(bodies_, s, sum, time_, dt, evaluate);
   }

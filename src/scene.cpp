@@ -215,6 +215,7 @@ void Scene::validate() const {
   detail::require_positive(world.width, where.c_str(), "width");
   detail::require_positive(world.height, where.c_str(), "height");
   detail::require_positive(world.dt, where.c_str(), "dt");
+  detail::require_positive(world.tolerance, where.c_str(), "tolerance");
   world.boundary.validate(where.c_str());
   edges_first.validate((where + ": edges_first").c_str());
   detail::require_non_negative(world.max_speed, where.c_str(), "max_speed");

@@ -34,7 +34,7 @@ using snapshot_detail::Out;
 template <class E>
 inline constexpr E kLast{};
 template <>
-inline constexpr Integrator kLast<Integrator> = Integrator::rk4;
+inline constexpr Integrator kLast<Integrator> = Integrator::yoshida6;
 template <>
 inline constexpr UpdateOrder kLast<UpdateOrder> = UpdateOrder::sequential;
 template <>
@@ -63,7 +63,9 @@ template <>
 inline constexpr BodyGroup::Layout kLast<BodyGroup::Layout> = BodyGroup::Layout::orbit;
 
 // The codes are part of the format: an enumerator moved or inserted shows here.
-static_assert(static_cast<int>(Integrator::rk4) == 2 && static_cast<int>(BoundaryKind::wrap) == 2);
+static_assert(static_cast<int>(Integrator::rk4) == 2 && static_cast<int>(Integrator::ias15) == 3 &&
+              static_cast<int>(Integrator::yoshida6) == 5 &&
+              static_cast<int>(BoundaryKind::wrap) == 2);
 static_assert(static_cast<int>(Arithmetic::float32) == 2 &&
               static_cast<int>(DistanceClamp::none) == 2);
 static_assert(static_cast<int>(Edge::bottom) == 3 &&
@@ -546,6 +548,78 @@ void read_bodies(In& in, World& world, double time, std::int64_t steps) {
   world.restore(time, steps, data.ax, data.ay);
 }
 
+// --- the adaptive integrator (section ADPT, format version 2) ---
+
+bool has_adaptive_settings(const WorldDef& w) {
+  return w.integrator == Integrator::ias15 || w.tolerance != kDefaultTolerance;
+}
+
+// f64 the scene's tolerance, f64 the world's, the carried state, the counts,
+// then four arrays, each u64 length and its f64s.
+Bytes adaptive_section(const World& world, double scene_tolerance) {
+  Out out;
+  const AdaptiveState& s = world.adaptive_state();
+  for (const double v :
+       {scene_tolerance, world.tolerance(), s.next_step, s.last_step, s.clock_compensation}) {
+    out.f64(v);
+  }
+  const AdaptiveStats& stats = s.stats;
+  for (const std::int64_t v :
+       {stats.steps, stats.rejected, stats.force_evaluations, stats.iterations}) {
+    out.i64(v);
+  }
+  for (const double v :
+       {stats.smallest_step, stats.closest_approach, stats.closest_approach_time}) {
+    out.f64(v);
+  }
+  for (const std::vector<double>* v :
+       {&s.position_compensation, &s.velocity_compensation, &s.coefficients, &s.correction}) {
+    out.u64(v->size());
+    out.f64s(*v);
+  }
+  return std::move(out.bytes);
+}
+
+// Adds ADPT when the world or the scene needs it; the snapshot is then version 2.
+void put_adaptive(snapshot_detail::SectionWriter& w, const World& world, const WorldDef& scene) {
+  if (!has_adaptive_settings(world.def()) && !has_adaptive_settings(scene)) return;
+  w.add("ADPT", adaptive_section(world, scene.tolerance));
+  w.require_version(2);
+}
+
+struct AdaptiveSection {
+  double scene_tolerance = kDefaultTolerance;
+  double world_tolerance = kDefaultTolerance;
+  AdaptiveState state;
+};
+
+AdaptiveSection read_adaptive(In& in) {
+  AdaptiveSection a;
+  AdaptiveState& s = a.state;
+  for (double* v : {&a.scene_tolerance, &a.world_tolerance, &s.next_step, &s.last_step,
+                    &s.clock_compensation}) {
+    *v = in.f64();
+  }
+  AdaptiveStats& stats = s.stats;
+  for (std::int64_t* v :
+       {&stats.steps, &stats.rejected, &stats.force_evaluations, &stats.iterations}) {
+    *v = in.i64();
+  }
+  for (double* v : {&stats.smallest_step, &stats.closest_approach, &stats.closest_approach_time}) {
+    *v = in.f64();
+  }
+  for (std::vector<double>* v :
+       {&s.position_compensation, &s.velocity_compensation, &s.coefficients, &s.correction}) {
+    const std::uint64_t n = in.u64();
+    if (n > in.left() / 8)
+      in.fail("an array of " + std::to_string(n) + " runs past the section's end");
+    v->resize(static_cast<std::size_t>(n));
+    in.f64s(*v);
+  }
+  in.finish();
+  return a;
+}
+
 World read_world(const snapshot_detail::Sections& sections, const Backends& backends) {
   double time = 0.0;
   std::int64_t steps = 0;
@@ -559,6 +633,12 @@ World read_world(const snapshot_detail::Sections& sections, const Backends& back
   read_fields(fields, world);
   In bodies = sections.open("BODY");
   read_bodies(bodies, world, time, steps);
+  if (sections.has("ADPT")) {
+    In adaptive = sections.open("ADPT");
+    const AdaptiveSection a = read_adaptive(adaptive);
+    world.set_tolerance(a.world_tolerance);
+    world.restore_adaptive(a.state);
+  }
   return world;
 }
 
@@ -582,12 +662,14 @@ Bytes to_snapshot(const Simulation& simulation) {
   w.add("SCEN", scene_section(simulation.scene()));
   w.add("SIMU", progress_section(simulation.progress()));
   put_world_sections(w, simulation.world());
+  put_adaptive(w, simulation.world(), simulation.scene().world);
   return w.finish();
 }
 
 Bytes to_snapshot(const World& world) {
   snapshot_detail::SectionWriter w;
   put_world_sections(w, world);
+  put_adaptive(w, world, world.def());
   return w.finish();
 }
 
@@ -601,6 +683,11 @@ Simulation simulation_from_snapshot(std::span<const std::uint8_t> bytes,
     }
     In scene_in = sections.open("SCEN");
     Scene scene = read_scene(scene_in);
+    if (sections.has("ADPT")) {
+      In adaptive = sections.open("ADPT");
+      scene.world.tolerance = read_adaptive(adaptive).scene_tolerance;
+      detail::require_positive(scene.world.tolerance, "snapshot", "the scene's tolerance");
+    }
     World world = read_world(sections, scene.world.backends);
     In progress = sections.open("SIMU");
     return Simulation(std::move(scene), std::move(world), read_progress(progress));

@@ -5,6 +5,7 @@
 // the sections of a snapshot with their CRC-32s.
 #pragma once
 
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 #include <cstring>
@@ -160,6 +161,8 @@ class In {
 class SectionWriter {
  public:
   void add(const char (&tag)[5], Bytes payload) { sections_.emplace_back(tag, std::move(payload)); }
+  // The format version the header says (1 unless a section needs more).
+  void require_version(std::uint32_t version) { version_ = std::max(version_, version); }
   Bytes finish() const {
     Out out;
     std::size_t total = kHeaderBytes;
@@ -168,7 +171,7 @@ class SectionWriter {
     }
     out.bytes.reserve(total);
     for (const char c : kSnapshotMagic) out.u8(static_cast<std::uint8_t>(c));
-    out.u32(kSnapshotVersion);
+    out.u32(version_);
     out.u32(static_cast<std::uint32_t>(sections_.size()));
     for (const auto& [tag, payload] : sections_) {
       for (std::size_t i = 0; i < 4; ++i) out.u8(static_cast<std::uint8_t>(tag[i]));
@@ -182,6 +185,7 @@ class SectionWriter {
 
  private:
   std::vector<std::pair<std::string, Bytes>> sections_;
+  std::uint32_t version_ = 1;
 };
 
 // A snapshot's sections, each checked against its CRC-32. Throws InputError

@@ -68,7 +68,7 @@ std::string tag_text(const std::uint8_t* p) {
 }
 
 bool known_tag(const std::string& tag) {
-  for (const char* t : {"SCEN", "SIMU", "WRLD", "RAND", "FLDS", "BODY"}) {
+  for (const char* t : {"SCEN", "SIMU", "WRLD", "RAND", "FLDS", "BODY", "ADPT"}) {
     if (tag == t) return true;
   }
   return false;
@@ -116,9 +116,9 @@ Sections::Sections(std::span<const std::uint8_t> bytes, const std::string& sourc
   if (bytes.size() < kHeaderBytes) in.fail("truncated in its header");
   for (int i = 0; i < 8; ++i) (void)in.u8();
   const std::uint32_t version = in.u32();
-  if (version != kSnapshotVersion) {
-    in.fail("snapshot format version " + std::to_string(version) + "; this calder reads version " +
-            std::to_string(kSnapshotVersion));
+  if (version < 1 || version > kSnapshotVersion) {
+    in.fail("snapshot format version " + std::to_string(version) +
+            "; this calder reads versions 1 to " + std::to_string(kSnapshotVersion));
   }
   const std::uint32_t count = in.u32();
   if (count > kMaxSections) in.fail("corrupted header: " + std::to_string(count) + " sections");
@@ -232,7 +232,7 @@ void ArchiveWriter::write(const Bytes& bytes) {
     if (file_->original_size() == 0) {
       Out header;
       for (const char c : kArchiveMagic) header.u8(static_cast<std::uint8_t>(c));
-      header.u32(kSnapshotVersion);
+      header.u32(kArchiveVersion);
       header.u32(0);
       file_->append(header.bytes);
     } else {
@@ -365,9 +365,9 @@ ArchiveReader::ArchiveReader(const std::string& path) : path_(path) {
   if (header.size() < kHeaderBytes) throw InputError(named(path) + ": truncated in its header");
   In h(header, named(path));
   for (int i = 0; i < 8; ++i) (void)h.u8();
-  if (const std::uint32_t version = h.u32(); version != kSnapshotVersion) {
+  if (const std::uint32_t version = h.u32(); version != kArchiveVersion) {
     throw InputError(named(path) + ": archive format version " + std::to_string(version) +
-                     "; this calder reads version " + std::to_string(kSnapshotVersion));
+                     "; this calder reads version " + std::to_string(kArchiveVersion));
   }
   complete_ = read_index(in, size);
   if (!complete_) scan(in, size);

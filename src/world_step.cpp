@@ -5,6 +5,7 @@
 // allow it; a step either completes or leaves the world as it was.
 #include <algorithm>
 #include <cassert>
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <string>
@@ -38,9 +39,28 @@ void World::check_step_settings() const {
     throw InvalidArgument(
         "World::step: the sequential update order needs the semi_implicit_euler integrator");
   }
+  if (def_.integrator == Integrator::ias15) check_adaptive_settings();
   if (def_.threads < 0) {
     throw InvalidArgument("World::step: threads must be >= 0 (got " + std::to_string(def_.threads) +
                           ")");
+  }
+}
+
+// IAS15 holds its error to the rounding of doubles: a force summed with a
+// relative error of 1e-3 (Barnes-Hut) would make its steps and its accuracy
+// meaningless, so it is refused rather than run.
+void World::check_adaptive_settings() const {
+  if (!(def_.tolerance > 0.0) || !std::isfinite(def_.tolerance)) {
+    throw InvalidArgument("World::step: the ias15 tolerance must be finite and > 0 (got " +
+                          detail::format_number(def_.tolerance) + ")");
+  }
+  for (const Field& field : fields_) {
+    const auto* mutual = std::get_if<MutualAttraction>(&field);
+    if (mutual != nullptr && mutual->enabled && mutual->method == NBodyMethod::barnes_hut) {
+      throw InvalidArgument(
+          "World::step: the ias15 integrator needs mutual_attraction's method exact or direct: "
+          "Barnes-Hut's force error (about 1e-3) is far above what ias15 resolves");
+    }
   }
 }
 
@@ -51,20 +71,27 @@ void World::step_one() {
   // A step either completes or throws with the world as it was: keep the
   // state it may change (a copy of six arrays, small next to the forces).
   save_state();
+  // The adaptive integrator's carried state changes with the step too.
+  const bool adaptive = def_.integrator == Integrator::ias15;
+  AdaptiveState saved_adaptive;
+  if (adaptive) saved_adaptive = adaptive_;
   try {
     if (def_.update_order == UpdateOrder::sequential) {
       step_euler_sequential();
     } else if (def_.integrator == Integrator::semi_implicit_euler) {
       step_euler_simultaneous();
+    } else if (def_.integrator == Integrator::ias15) {
+      step_ias15();
     } else {
       step_multistage();
     }
     check_finite("World::step");
   } catch (...) {
     restore_state();
+    if (adaptive) adaptive_ = std::move(saved_adaptive);
     throw;
   }
-  time_ += def_.dt;
+  advance_clock();
   ++step_count_;
   advance_noise(1);
 }

@@ -49,6 +49,12 @@ const char* name_of(Integrator integrator) {
       return "velocity_verlet";
     case Integrator::rk4:
       return "rk4";
+    case Integrator::ias15:
+      return "ias15";
+    case Integrator::yoshida4:
+      return "yoshida4";
+    case Integrator::yoshida6:
+      return "yoshida6";
   }
   return "?";
 }

@@ -41,6 +41,12 @@ const char* name_of(Integrator integrator) {
       return "velocity_verlet";
     case Integrator::rk4:
       return "rk4";
+    case Integrator::ias15:
+      return "ias15";
+    case Integrator::yoshida4:
+      return "yoshida4";
+    case Integrator::yoshida6:
+      return "yoshida6";
   }
   return "?";
 }
@@ -162,6 +168,8 @@ TEST(IntegratorsKepler, ConvergenceOrders) {
       {Integrator::semi_implicit_euler, 4096, 0.8, 1.2},
       {Integrator::velocity_verlet, 512, 1.8, 2.2},
       {Integrator::rk4, 512, 3.6, 4.4},
+      {Integrator::yoshida4, 512, 3.6, 4.4},
+      {Integrator::yoshida6, 128, 5.4, 6.6},
   };
   for (const auto& c : cases) {
     std::vector<double> dts;

@@ -315,7 +315,7 @@ TEST(SceneFileErrors, NanAndInfinity) {
 TEST(SceneFileErrors, UnknownChoiceListsTheValidOnes) {
   EXPECT_EQ(error_of("[world]\nintegrator = \"rk5\"\n"),
             "t.toml:2:14: 'world.integrator' must be one of semi_implicit_euler, velocity_verlet, "
-            "rk4 (got 'rk5'; did you mean 'rk4'?)");
+            "rk4, ias15, yoshida4, yoshida6 (got 'rk5'; did you mean 'rk4'?)");
   EXPECT_EQ(error_of("[boundary]\nkind = \"bounce\"\nedges = [\"left\", \"floor\"]\n"),
             "t.toml:3:18: 'boundary.edges[1]' must be one of left, right, top, bottom (got "
             "'floor')");

@@ -68,6 +68,13 @@ double parse_dt(const std::string& flag, const std::string& text) {
   return *value;
 }
 
+Integrator parse_integrator(const std::string& flag, const std::string& text) {
+  for (const IntegratorName& i : kIntegratorNames) {
+    if (text == i.name) return i.value;
+  }
+  bad(flag, "semi_implicit_euler, velocity_verlet, rk4, ias15, yoshida4 or yoshida6", text);
+}
+
 std::uint32_t parse_seed(const std::string& flag, const std::string& text) {
   const auto value = to_int64(text);
   if (!value || *value < 0 || *value > std::numeric_limits<std::uint32_t>::max()) {

@@ -28,6 +28,8 @@ std::optional<double> to_double(std::string_view text);
 std::int64_t parse_frames(const std::string& flag, const std::string& text);
 // --dt: a finite number > 0.
 double parse_dt(const std::string& flag, const std::string& text);
+// An integrator by its scene-file name (semi_implicit_euler, ..., ias15).
+Integrator parse_integrator(const std::string& flag, const std::string& text);
 // --seed: an integer in 0..2^32-1.
 std::uint32_t parse_seed(const std::string& flag, const std::string& text);
 // --mouse-pressed: "FIRST-LAST" (1 <= FIRST <= LAST <= max_frames), or "none"

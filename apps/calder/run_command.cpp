@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cstdio>
+#include <limits>
 #include <string>
 
 #include "calder/error.hpp"
@@ -81,6 +82,82 @@ void check_bytes_written(const RunOptions& options, const PreparedInput& input,
       "--no-work-limit to write it anyway");
 }
 
+// The energy error of a run: measured every frame when that is cheap (and
+// every --energy-every frames), a warning the first time it passes the
+// threshold, a RunError at the end with --fail-on-energy.
+class EnergyMonitor {
+ public:
+  EnergyMonitor(const Simulation& simulation, const RunOptions& options, std::ostream& lines,
+                std::ostream& err)
+      : watch_(simulation.world(), options.energy_threshold.value_or(kDefaultEnergyThreshold),
+               start_energy(simulation)),
+        warn_(options.energy_threshold.has_value() || newtonian(simulation.world())),
+        every_(options.energy_every),
+        fail_(options.fail_on_energy),
+        cheap_(potential_energy_cost(simulation.world(), summary_potential_pairs) <=
+               kEveryFrameTerms),
+        lines_(lines),
+        err_(err) {}
+  void after_frame(const Simulation& simulation) {
+    const std::int64_t frame = simulation.frame();
+    const bool listed = every_ > 0 && frame % every_ == 0;
+    if (!watch_.active() || !(cheap_ || listed)) return;
+    if (watch_.observe(simulation.world(), frame) && warn_) {
+      err_ << "calder: warning: relative energy error " << format_number(watch_.last_error())
+           << " passed " << format_number(watch_.threshold()) << " at frame " << frame
+           << " (t = " << format_number(simulation.world().time()) << ")\n";
+    }
+    if (listed) {
+      lines_ << "energy frame " << frame << " t " << format_number(simulation.world().time())
+             << " total " << format_number(total_energy(simulation.world())) << " relative error "
+             << format_number(watch_.last_error()) << '\n';
+    }
+  }
+  void finish(const std::string& source) const {
+    if (fail_ && warn_ && watch_.first_frame_over() >= 0) {
+      throw RunError(source + ": the relative energy error passed " +
+                     format_number(watch_.threshold()) + " at frame " +
+                     std::to_string(watch_.first_frame_over()) + " (--fail-on-energy)");
+    }
+  }
+  [[nodiscard]] const EnergyWatch& watch() const { return watch_; }
+
+ private:
+  // Up to this many pair terms the error is measured after every frame.
+  static constexpr std::uint64_t kEveryFrameTerms = 100'000;
+  // The energy at the run's first frame: a run resumed from a snapshot
+  // builds its scene's start again (the snapshot holds the scene and seed).
+  static double start_energy(const Simulation& simulation) {
+    try {
+      if (simulation.frame() == 0) return total_energy(simulation.world());
+      const Simulation start(simulation.scene());
+      return total_energy(start.world());
+    } catch (const Error&) {
+      return std::numeric_limits<double>::quiet_NaN();  // no known potential: not measured
+    }
+  }
+  // Warn unasked only about Newton's unclamped law: the book's clamped laws
+  // at dt = 1 never promised to conserve energy.
+  static bool newtonian(const World& world) {
+    for (const Field& field : world.fields()) {
+      const AttractionLaw* law = nullptr;
+      if (const auto* a = std::get_if<Attractor>(&field); a != nullptr && a->enabled) law = &a->law;
+      if (const auto* m = std::get_if<MutualAttraction>(&field); m != nullptr && m->enabled) {
+        law = &m->law;
+      }
+      if (law != nullptr && !law->custom && law->clamp == DistanceClamp::none) return true;
+    }
+    return false;
+  }
+  EnergyWatch watch_;
+  bool warn_;
+  std::int64_t every_;
+  bool fail_;
+  bool cheap_;
+  std::ostream& lines_;
+  std::ostream& err_;
+};
+
 }  // namespace
 
 CLI::App* add_run_command(CLI::App& app, RunOptions& options) {
@@ -98,6 +175,19 @@ CLI::App* add_run_command(CLI::App& app, RunOptions& options) {
                   "Trajectory format (default: json for a FILE ending in .json, else csv)")
       ->type_name("csv|json")
       ->needs(trajectory);
+  run->add_option("--energy-every", options.energy_every,
+                  "Print the total energy and its relative error since the start every K frames "
+                  "(to standard error with --trajectory)")
+      ->type_name("K")
+      ->check(CLI::Range(std::int64_t{1}, max_frames));
+  run->add_option("--energy-threshold", options.energy_threshold,
+                  "Warn (one line on standard error, naming the frame) the first time the "
+                  "relative energy error passes X (default 1e-6); only for scenes that conserve "
+                  "energy")
+      ->type_name("X")
+      ->check(CLI::PositiveNumber);
+  run->add_flag("--fail-on-energy", options.fail_on_energy,
+                "Exit 1 after the summary when the energy error passed the threshold");
   add_snapshot_options(*run, options.snapshot);
   add_device_option(*run, options.device);  // calder::gpu (devices_command.hpp)
   run->footer(
@@ -169,18 +259,22 @@ void run_command(const RunOptions& options, std::ostream& out, std::ostream& err
   SnapshotOutputs snapshots(options.snapshot, simulation);
   Progress progress(err, "run " + detail::printable(input.scene.name), frames,
                     stderr_is_terminal());
+  EnergyMonitor energy(simulation, options, options.trajectory ? err : out, err);
   const auto after_frame = [&](std::int64_t frame) {
     interrupt.check();
     progress.update(frame);
     snapshots.after_frame(simulation);
+    energy.after_frame(simulation);
   };
 
   if (!options.trajectory) {
     run_frames(simulation, frames, input.source, after_frame);
     snapshots.finish(simulation);
     progress.finish();
-    print_summary(out, simulation, input.effective_seed(), input.source,
-                  [&interrupt] { interrupt.check(); });
+    print_summary(
+        out, simulation, input.effective_seed(), input.source, [&interrupt] { interrupt.check(); },
+        &energy.watch());
+    energy.finish(input.source);
     return;
   }
 
@@ -207,6 +301,7 @@ void run_command(const RunOptions& options, std::ostream& out, std::ostream& err
   file.commit();
   snapshots.finish(simulation);
   progress.finish();
+  energy.finish(input.source);
 }
 
 void print_scene_list(std::ostream& out) {

@@ -8,6 +8,7 @@
 #include <ostream>
 #include <string>
 
+#include "calder/diagnostics.hpp"
 #include "calder/scene.hpp"
 #include "run_options.hpp"
 #include "snapshot_io.hpp"
@@ -25,10 +26,13 @@ enum class TrajectoryFormat { csv, json };
 
 struct RunOptions {
   InputOptions input;
-  std::optional<std::string> trajectory;  // a path, or "-" for stdout
-  std::optional<std::string> format;      // "csv" or "json"
-  SnapshotOptions snapshot;               // --save, --archive, --every
-  std::optional<std::string> device;      // --device (devices_command.hpp)
+  std::optional<std::string> trajectory;   // a path, or "-" for stdout
+  std::optional<std::string> format;       // "csv" or "json"
+  SnapshotOptions snapshot;                // --save, --archive, --every
+  std::optional<std::string> device;       // --device (devices_command.hpp)
+  std::int64_t energy_every = 0;           // --energy-every: a line every K frames
+  std::optional<double> energy_threshold;  // --energy-threshold
+  bool fail_on_energy = false;             // --fail-on-energy
 };
 
 // Adds the `run` verb with its flags to the application.

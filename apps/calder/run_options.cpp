@@ -55,6 +55,19 @@ const SceneFlag kSceneFlags[] = {
        scene.input.mouse = parse_point(flag, text);
        scene.input.moves.clear();
      }},
+    {"--integrator", "NAME",
+     "semi_implicit_euler, velocity_verlet, rk4, ias15, yoshida4 or yoshida6, replacing the "
+     "scene's (see "
+     "docs/SCENES.md)",
+     &InputOptions::integrator,
+     [](const std::string& flag, const std::string& text, Scene& scene) {
+       scene.world.integrator = parse_integrator(flag, text);
+     }},
+    {"--tolerance", "X", "ias15's tolerance, a number > 0 (default: the scene's, else 1e-9)",
+     &InputOptions::tolerance,
+     [](const std::string& flag, const std::string& text, Scene& scene) {
+       scene.world.tolerance = parse_dt(flag, text);
+     }},
 };
 
 }  // namespace

@@ -36,6 +36,8 @@ struct InputOptions {
   std::optional<std::string> state;
   std::vector<std::string> mouse_pressed;
   std::optional<std::string> mouse;
+  std::optional<std::string> integrator;
+  std::optional<std::string> tolerance;
   bool no_work_limit = false;  // --no-work-limit
 };
 

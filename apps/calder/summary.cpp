@@ -41,8 +41,34 @@ std::uint64_t summary_potential_cost(const World& world) {
   return potential_energy_cost(world, summary_potential_pairs);
 }
 
+// The energy error and, for ias15, what its steps were.
+// `total`: the total energy now, when summed exactly.
+void print_accuracy(std::ostream& out, const World& world, const EnergyWatch* energy,
+                    std::optional<double> total) {
+  if (energy != nullptr && energy->active() && total) {
+    const double start = energy->start_energy();
+    const double change = std::fabs(*total - start);
+    line(out, "energy error",
+         format_number(start != 0.0 ? change / std::fabs(start) : change) +
+             " (relative, since frame 0)");
+  } else if (energy != nullptr) {
+    line(out, "energy error", "n/a (the scene's fields or boundary don't conserve energy)");
+  }
+  if (world.integrator() != Integrator::ias15) return;
+  const AdaptiveStats& s = world.adaptive_stats();
+  line(out, "internal steps",
+       std::to_string(s.steps) + " (" + std::to_string(s.rejected) + " rejected, " +
+           std::to_string(s.force_evaluations) + " force evaluations)");
+  if (s.steps > 0) line(out, "smallest step", format_number(s.smallest_step));
+  if (std::isfinite(s.closest_approach)) {
+    line(out, "closest approach",
+         format_number(s.closest_approach) + " at t = " + format_number(s.closest_approach_time));
+  }
+}
+
 void print_summary(std::ostream& out, const Simulation& simulation, std::uint32_t seed,
-                   const std::string& source, const std::function<void()>& before_printing) {
+                   const std::string& source, const std::function<void()>& before_printing,
+                   const EnergyWatch* energy) {
   const World& world = simulation.world();
   // The displays' energy (calder::displayed_energy), with the summary's
   // larger budget: it is computed once.
@@ -97,6 +123,9 @@ void print_summary(std::ostream& out, const Simulation& simulation, std::uint32_
   }
   line(out, "momentum", vector_text(momentum));
   line(out, "angular momentum", format_number(angular));
+  print_accuracy(out, world, energy,
+                 potential && potential->exact ? std::optional<double>(kinetic + potential->value)
+                                               : std::nullopt);
   line(out, "state hash", state_hash_text(world));
 }
 

@@ -7,6 +7,7 @@
 #include <ostream>
 #include <string>
 
+#include "calder/diagnostics.hpp"
 #include "calder/scene.hpp"
 
 namespace calder::app {
@@ -21,9 +22,13 @@ namespace calder::app {
 // overflows (inf, nan) is a failed run: throws RunError naming `source` and
 // the frame, and prints nothing. `before_printing` (e.g. a check for a
 // signal that came during the sums) runs between the sums and the printing.
+// With `energy`, also the relative energy error since the start (and the
+// worst, and the frame it passed the threshold); with ias15, its internal
+// steps, force evaluations, smallest step and closest approach.
 void print_summary(std::ostream& out, const Simulation& simulation, std::uint32_t seed,
                    const std::string& source,
-                   const std::function<void()>& before_printing = nullptr);
+                   const std::function<void()>& before_printing = nullptr,
+                   const EnergyWatch* energy = nullptr);
 
 // At most this many pairs (about half a second) are summed exactly.
 constexpr std::uint64_t summary_potential_pairs = std::uint64_t{1} << 25;

@@ -75,6 +75,44 @@ double angular_momentum(const World& world, Vec2 origin = {});
 // Mass-weighted mean position.
 Vec2 center_of_mass(const World& world);
 
+// Whether the world's total energy (total_energy) should stay constant: every
+// enabled field conserves it (gravity, attractors, mutual attraction under a
+// law with a potential), there is no boundary rule and no speed limit.
+// Drag, friction, wind, fans and bounces change it on purpose.
+bool conserves_energy(const World& world);
+
+// The relative energy error of a run since its start, |E - E0| / |E0|
+// (|E - E0| when E0 is 0): what tells a user that a fixed step was too long
+// for a close approach. Measure it after every frame (or every few), and
+// warn the first time it passes the threshold.
+inline constexpr double kDefaultEnergyThreshold = 1e-6;
+class EnergyWatch {
+ public:
+  // Records the energy now; inactive (measures nothing) when the world
+  // doesn't conserve energy or its potential isn't known.
+  explicit EnergyWatch(const World& world, double threshold = kDefaultEnergyThreshold);
+  // Measures from a start energy given (a run resumed from a snapshot: the
+  // energy of its scene's first frame); inactive when not finite.
+  EnergyWatch(const World& world, double threshold, double start_energy);
+  // Measures the error now; true only the first time it passes the threshold.
+  bool observe(const World& world, std::int64_t frame);
+  [[nodiscard]] bool active() const { return active_; }
+  [[nodiscard]] double start_energy() const { return start_; }
+  [[nodiscard]] double last_error() const { return last_; }
+  [[nodiscard]] double worst_error() const { return worst_; }
+  [[nodiscard]] double threshold() const { return threshold_; }
+  // The first frame observed past the threshold, or -1.
+  [[nodiscard]] std::int64_t first_frame_over() const { return first_over_; }
+
+ private:
+  bool active_ = false;
+  double start_ = 0.0;
+  double threshold_ = kDefaultEnergyThreshold;
+  double last_ = 0.0;
+  double worst_ = 0.0;
+  std::int64_t first_over_ = -1;
+};
+
 // A 64-bit hash of the bodies' state: count, positions, velocities, masses,
 // radii, bit for bit. Same state, same hash; any changed bit changes it
 // (with overwhelming probability).

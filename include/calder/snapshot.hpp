@@ -39,8 +39,13 @@
 
 namespace calder {
 
-// The format version written, and the only one read.
-inline constexpr std::uint32_t kSnapshotVersion = 1;
+// The newest format version; every version from 1 to it is read. A snapshot
+// is written as version 1 unless it holds an adaptive integrator's state
+// (section ADPT, version 2), so that what version 1 could hold stays
+// readable by a calder that reads only version 1.
+inline constexpr std::uint32_t kSnapshotVersion = 2;
+// The archive format's version (the snapshots inside carry their own).
+inline constexpr std::uint32_t kArchiveVersion = 1;
 
 using Bytes = std::vector<std::uint8_t>;
 

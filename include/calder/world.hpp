@@ -24,6 +24,7 @@
 #include <string_view>
 #include <vector>
 
+#include "calder/adaptive.hpp"
 #include "calder/backends.hpp"
 #include "calder/body_columns.hpp"
 #include "calder/fields.hpp"
@@ -36,7 +37,20 @@ enum class Integrator {
   semi_implicit_euler,  // the book's update: v += a dt; x += v dt (first order, symplectic)
   velocity_verlet,      // kick-drift-kick, second order, symplectic for position forces
   rk4,                  // classic fourth-order Runge-Kutta
+  // IAS15 (Rein & Spiegel 2015): 15th-order Gauss-Radau predictor-corrector
+  // with an adaptive internal step, to machine precision for smooth forces.
+  // A step() still advances exactly dt: as many internal steps as needed,
+  // the last ending on the frame (calder/adaptive.hpp).
+  ias15,
+  // Yoshida's (1990) compositions of velocity Verlet: 4th order (3 substeps)
+  // and 6th order (7 substeps, his solution A); fixed step, symplectic for
+  // position forces, for long smooth runs.
+  yoshida4,
+  yoshida6,
 };
+
+// IAS15's default tolerance (WorldDef::tolerance): Rein & Spiegel's epsilon.
+inline constexpr double kDefaultTolerance = 1e-9;
 
 // When bodies are moved relative to the forces acting on them.
 enum class UpdateOrder {
@@ -129,6 +143,20 @@ inline constexpr std::array<ArithmeticName, 3> kArithmeticNames{{
 inline constexpr int max_threads = 1024;
 inline constexpr std::int64_t max_step_count = std::int64_t{1} << 53;
 
+// Every integrator by its name, as scene files and the command line spell it.
+struct IntegratorName {
+  std::string_view name;
+  Integrator value;
+};
+inline constexpr std::array<IntegratorName, 6> kIntegratorNames{{
+    {"semi_implicit_euler", Integrator::semi_implicit_euler},
+    {"velocity_verlet", Integrator::velocity_verlet},
+    {"rk4", Integrator::rk4},
+    {"ias15", Integrator::ias15},
+    {"yoshida4", Integrator::yoshida4},
+    {"yoshida6", Integrator::yoshida6},
+}};
+
 struct WorldDef {
   double width = 640.0;
   double height = 240.0;
@@ -151,6 +179,9 @@ struct WorldDef {
   // process defaults, the kernels of calder::bulk and calder::nbody when the
   // program links them.
   Backends backends{};
+  // ias15: the step criterion's epsilon (Pham, Rein & Spiegel 2024), > 0;
+  // smaller is more accurate and slower. Other integrators ignore it.
+  double tolerance = kDefaultTolerance;
 };
 
 struct BodyDef {
@@ -262,6 +293,19 @@ class World {
   void set_dt(double dt);
   [[nodiscard]] Integrator integrator() const { return def_.integrator; }
   void set_integrator(Integrator integrator) { def_.integrator = integrator; }
+  [[nodiscard]] double tolerance() const { return def_.tolerance; }
+  void set_tolerance(double tolerance);
+  // What the adaptive integrator counted since the world was made (or
+  // restored): internal steps, rejections, force evaluations, the smallest
+  // step and the closest approach (calder/adaptive.hpp).
+  [[nodiscard]] const AdaptiveStats& adaptive_stats() const { return adaptive_.stats; }
+  // What it carries from one step() to the next (the internal step, the
+  // predictor, the compensated sums): saved by snapshots so that a resumed
+  // run is the uninterrupted one bit for bit.
+  [[nodiscard]] const AdaptiveState& adaptive_state() const { return adaptive_; }
+  // Puts such a state back. Throws calder::InvalidArgument, changing
+  // nothing, for arrays that don't fit the bodies or a non-finite value.
+  void restore_adaptive(const AdaptiveState& state);
   [[nodiscard]] UpdateOrder update_order() const { return def_.update_order; }
   void set_update_order(UpdateOrder order) { def_.update_order = order; }
   [[nodiscard]] const Boundary& boundary() const { return def_.boundary; }
@@ -305,8 +349,13 @@ class World {
   void step_euler_simultaneous();
   void step_euler_sequential();
   void step_multistage();
+  void step_ias15();
+  void ias15_substeps(double frame_dt, std::span<const double> applied_ax,
+                      std::span<const double> applied_ay);
+  void advance_clock();
   void step_one();
   void check_step_settings() const;
+  void check_adaptive_settings() const;
   bool step_batch(int steps);
   void advance_noise(int steps);
   [[nodiscard]] std::string needs_plain_loops() const;  // "" or what the kernels lack
@@ -320,6 +369,7 @@ class World {
   Noise noise_;
   double time_ = 0.0;
   std::int64_t step_count_ = 0;
+  AdaptiveState adaptive_;
   // Scratch space of the multi-stage integrators, and the state saved at the
   // start of a step; kept to avoid reallocation.
   std::vector<double> scratch_;

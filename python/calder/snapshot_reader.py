@@ -37,8 +37,9 @@ except ImportError:  # copied where calder isn't built
 SNAPSHOT_MAGIC = b"CALDSNAP"
 ARCHIVE_MAGIC = b"CALDARCH"
 ARCHIVE_END = b"CALDAEND"
-VERSION = 1
-TAGS = ("SCEN", "SIMU", "WRLD", "RAND", "FLDS", "BODY")
+VERSION = 2  # the newest snapshot version; 1 and 2 are read (2 adds ADPT)
+ARCHIVE_VERSION = 1
+TAGS = ("SCEN", "SIMU", "WRLD", "RAND", "FLDS", "BODY", "ADPT")
 _RECORD = struct.Struct("<4sIqQ")  # an archive record: tag, CRC-32, frame, length
 MAX_SNAPSHOT_BYTES = 2 << 30  # the largest snapshot read (calder's max_snapshot_bytes)
 MAX_FRAMES = 10_000_000
@@ -90,8 +91,9 @@ def _read_sections(data, source: str) -> dict:
     if len(view) < 16 or view[:8] != SNAPSHOT_MAGIC:
         raise SnapshotError(f"{source}: not a calder snapshot (no CALDSNAP at its start)")
     version, count = struct.unpack_from("<II", view, 8)
-    if version != VERSION:
-        raise SnapshotError(f"{source}: snapshot format version {version}; this reader reads {VERSION}")
+    if not 1 <= version <= VERSION:
+        raise SnapshotError(f"{source}: snapshot format version {version}; "
+                            f"this reader reads versions 1 to {VERSION}")
     sections, at = {}, 16
     for s in range(count):
         if len(view) - at < 16:
@@ -194,9 +196,9 @@ class Archive:
             if header[:8] != ARCHIVE_MAGIC or len(header) < 16:
                 raise SnapshotError(f"{self.path}: not a calder archive (no CALDARCH at its start)")
             (version,) = struct.unpack_from("<I", header, 8)
-            if version != VERSION:
+            if version != ARCHIVE_VERSION:
                 raise SnapshotError(f"{self.path}: archive format version {version}; "
-                                    f"this reader reads {VERSION}")
+                                    f"this reader reads {ARCHIVE_VERSION}")
             size = f.seek(0, os.SEEK_END)
             self.complete = self._read_index(f, size)
             if not self.complete:

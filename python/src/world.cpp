@@ -178,7 +178,12 @@ void bind_world(py::module_& m) {
       .value("semi_implicit_euler", Integrator::semi_implicit_euler,
              "the book's update: v += a dt; x += v dt")
       .value("velocity_verlet", Integrator::velocity_verlet)
-      .value("rk4", Integrator::rk4);
+      .value("rk4", Integrator::rk4)
+      .value("ias15", Integrator::ias15,
+             "adaptive 15th order (Rein & Spiegel 2015): steps of dt made of internal steps "
+             "to the tolerance")
+      .value("yoshida4", Integrator::yoshida4, "4th-order symplectic composition of leapfrog")
+      .value("yoshida6", Integrator::yoshida6, "6th-order symplectic composition of leapfrog");
   py::enum_<UpdateOrder>(m, "UpdateOrder")
       .value("simultaneous", UpdateOrder::simultaneous)
       .value("sequential", UpdateOrder::sequential, "body by body, as example 2.9");
@@ -241,9 +246,11 @@ void bind_world(py::module_& m) {
   world
       .def(py::init([](double width, double height, double dt, Integrator integrator,
                        UpdateOrder update_order, const Boundary& boundary, std::uint32_t seed,
-                       Arithmetic arithmetic, int threads, const std::string& device) {
+                       Arithmetic arithmetic, int threads, double tolerance,
+                       const std::string& device) {
              WorldDef def{width,    height, dt,         integrator, update_order,
                           boundary, seed,   arithmetic, threads};
+             def.tolerance = tolerance;
              use_device(def, device);  // device.cpp: "gpu" steps on calder::gpu
              return std::make_unique<World>(def);
            }),
@@ -251,7 +258,7 @@ void bind_world(py::module_& m) {
            py::arg("integrator") = Integrator::semi_implicit_euler,
            py::arg("update_order") = UpdateOrder::simultaneous, py::arg("boundary") = Boundary{},
            py::arg("seed") = 0, py::arg("arithmetic") = Arithmetic::book, py::arg("threads") = 0,
-           py::arg("device") = "cpu")
+           py::arg("tolerance") = kDefaultTolerance, py::arg("device") = "cpu")
       // --- bodies ---
       .def(
           "add_body",
@@ -434,6 +441,24 @@ void bind_world(py::module_& m) {
       .def_property_readonly("step_count", &World::step_count)
       .def_property("dt", &World::dt, &World::set_dt)
       .def_property("integrator", &World::integrator, &World::set_integrator)
+      .def_property("tolerance", &World::tolerance, &World::set_tolerance,
+                    "ias15's step criterion (default 1e-9; smaller is more accurate)")
+      .def_property_readonly(
+          "adaptive_stats",
+          [](const World& w) {
+            const AdaptiveStats& s = w.adaptive_stats();
+            py::dict d;
+            d["steps"] = s.steps;
+            d["rejected"] = s.rejected;
+            d["force_evaluations"] = s.force_evaluations;
+            d["iterations"] = s.iterations;
+            d["smallest_step"] = s.smallest_step;
+            d["closest_approach"] = s.closest_approach;
+            d["closest_approach_time"] = s.closest_approach_time;
+            return d;
+          },
+          "What ias15 counted: steps, rejected, force_evaluations, iterations, smallest_step, "
+          "closest_approach (inf when not measured) and closest_approach_time")
       .def_property("update_order", &World::update_order, &World::set_update_order)
       .def_property("boundary", &World::boundary, &World::set_boundary)
       .def_property("arithmetic", &World::arithmetic, &World::set_arithmetic)
@@ -503,6 +528,21 @@ void bind_world(py::module_& m) {
         py::arg("max_pairs") = kHudEnergyPairs,
         "Kinetic and potential energy, at most max_pairs pairs of each mutual attraction "
         "summed (past them a sampled estimate)");
+  m.def("conserves_energy", &conserves_energy, py::arg("world"),
+        "Whether the world's fields and boundary keep its total energy constant");
+  py::class_<EnergyWatch>(m, "EnergyWatch",
+                          "The relative energy error of a run since its start: observe(world, "
+                          "frame) after each frame returns True the first time it passes the "
+                          "threshold")
+      .def(py::init<const World&, double>(), py::arg("world"),
+           py::arg("threshold") = kDefaultEnergyThreshold)
+      .def("observe", &EnergyWatch::observe, py::arg("world"), py::arg("frame"))
+      .def_property_readonly("active", &EnergyWatch::active)
+      .def_property_readonly("start_energy", &EnergyWatch::start_energy)
+      .def_property_readonly("last_error", &EnergyWatch::last_error)
+      .def_property_readonly("worst_error", &EnergyWatch::worst_error)
+      .def_property_readonly("threshold", &EnergyWatch::threshold)
+      .def_property_readonly("first_frame_over", &EnergyWatch::first_frame_over);
   m.def("linear_momentum", &linear_momentum, py::arg("world"));
   m.def("angular_momentum", &angular_momentum, py::arg("world"), py::arg("origin") = Vec2{});
   m.def("center_of_mass", &center_of_mass, py::arg("world"));

@@ -21,10 +21,13 @@ struct Choice {
   E value;
 };
 
-inline constexpr std::array<Choice<Integrator>, 3> kIntegrators{{
+inline constexpr std::array<Choice<Integrator>, 6> kIntegrators{{
     {"semi_implicit_euler", Integrator::semi_implicit_euler},
     {"velocity_verlet", Integrator::velocity_verlet},
     {"rk4", Integrator::rk4},
+    {"ias15", Integrator::ias15},
+    {"yoshida4", Integrator::yoshida4},
+    {"yoshida6", Integrator::yoshida6},
 }};
 
 inline constexpr std::array<Choice<UpdateOrder>, 2> kUpdateOrders{{

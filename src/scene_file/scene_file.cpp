@@ -226,8 +226,9 @@ void Reader::world(const Tbl& top, Scene& s) const {
   const toml::table* t = top.table("world");
   if (t == nullptr) return;
   const Tbl w(*this, *t, "[world]", "world.");
-  w.allow({"dt", "integrator", "update_order", "arithmetic", "threads", "max_speed"});
+  w.allow({"dt", "integrator", "tolerance", "update_order", "arithmetic", "threads", "max_speed"});
   s.world.dt = w.number("dt", s.world.dt, Check::positive);
+  s.world.tolerance = w.number("tolerance", s.world.tolerance, Check::positive);
   s.world.max_speed = w.number("max_speed", s.world.max_speed, Check::non_negative);
   s.world.integrator = w.choice("integrator", kIntegrators, s.world.integrator);
   s.world.update_order = w.choice("update_order", kUpdateOrders, s.world.update_order);

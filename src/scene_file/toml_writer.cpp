@@ -343,6 +343,7 @@ std::string to_toml(const Scene& scene) {
   w.header("[world]");
   w.line("dt", num(scene.world.dt));
   w.line("integrator", str(name_of(kIntegrators, scene.world.integrator)));
+  if (scene.world.tolerance != kDefaultTolerance) w.line("tolerance", num(scene.world.tolerance));
   w.line("update_order", str(name_of(kUpdateOrders, scene.world.update_order)));
   w.line("arithmetic", str(name_of(kArithmetics, scene.world.arithmetic)));
   w.line("threads", std::to_string(scene.world.threads));

@@ -112,6 +112,36 @@ elseif(CASE STREQUAL "summary")
   if(NOT out MATCHES "\nmomentum +\\(0, 0\\)\n")
     fail("example 2.8 should have zero linear momentum")
   endif()
+elseif(CASE STREQUAL "energy_warning")
+  # Fixed-step RK4 on the Pythagorean problem: the first close approach (t
+  # about 1.9) wrecks the energy. One warning names the frame; the exit
+  # status stays 0 unless --fail-on-energy asks.
+  calder_run(run pythagorean --integrator rk4 --dt 0.001 --frames 2500)
+  if(NOT rc STREQUAL "0")
+    fail("expected exit 0")
+  endif()
+  if(NOT err MATCHES "^calder: warning: relative energy error [-0-9.e]+ passed 1e-06 at frame 18[0-9][0-9] \\(t = 1\\.8[0-9]*\\)\n$")
+    fail("expected one warning naming a frame of the first close approach")
+  endif()
+  if(NOT out MATCHES "\nenergy error +[-0-9.e]+ \\(relative, since frame 0\\)")
+    fail("the summary should report the energy error")
+  endif()
+  calder_run(run pythagorean --integrator rk4 --dt 0.001 --frames 2500 --fail-on-energy)
+  if(NOT rc STREQUAL "1" OR NOT err MATCHES "--fail-on-energy")
+    fail("--fail-on-energy: expected exit 1 and the reason")
+  endif()
+  # The scene's own ias15: no warning, its steps and closest approach shown.
+  calder_run(run pythagorean --energy-every 350)
+  expect_success()
+  foreach(label IN ITEMS "energy frame 350 t 35 total [-0-9.e]+ relative error [-0-9.e]+"
+                         "energy frame 700 t 70 total [-0-9.e]+ relative error [-0-9.e]+"
+                         "energy error +[-0-9.e]+ \\(relative, since frame 0\\)"
+                         "internal steps +[0-9]+ \\([0-9]+ rejected, [0-9]+ force evaluations\\)"
+                         "closest approach +0\\.01[0-9]+ at t = 15\\.8[0-9]*")
+    if(NOT out MATCHES "(^|\n)${label}\n")
+      fail("the output lacks a line '${label}'")
+    endif()
+  endforeach()
 elseif(CASE STREQUAL "summary_hash")
   # Same run, same summary (and hash); another seed, another hash.
   calder_run(run example-2.7 --seed 7 --frames 300)

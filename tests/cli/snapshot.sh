@@ -145,9 +145,9 @@ case "$case_name" in
     head -c 12 good.snap > header.snap
     run_calder run header.snap
     expect_error 2 "header.snap" "truncated"
-    printf 'CALDSNAP\002\000\000\000\000\000\000\000' > future.snap
+    printf 'CALDSNAP\003\000\000\000\000\000\000\000' > future.snap
     run_calder run future.snap
-    expect_error 2 "future.snap" "version 2"
+    expect_error 2 "future.snap" "version 3"
     printf 'CALDARCH\001\000\000\000\000\000\000\000' > empty.archive
     run_calder run empty.archive
     expect_error 2 "empty.archive" "no complete snapshot"
