@@ -68,7 +68,7 @@ void print_accuracy(std::ostream& out, const World& world, const EnergyWatch* en
 
 void print_summary(std::ostream& out, const Simulation& simulation, std::uint32_t seed,
                    const std::string& source, const std::function<void()>& before_printing,
-                   const EnergyWatch* energy) {
+                   const EnergyWatch* energy_watch) {
   const World& world = simulation.world();
   // The displays' energy (calder::displayed_energy), with the summary's
   // larger budget: it is computed once.
@@ -123,7 +123,7 @@ void print_summary(std::ostream& out, const Simulation& simulation, std::uint32_
   }
   line(out, "momentum", vector_text(momentum));
   line(out, "angular momentum", format_number(angular));
-  print_accuracy(out, world, energy,
+  print_accuracy(out, world, energy_watch,
                  potential && potential->exact ? std::optional<double>(kinetic + potential->value)
                                                : std::nullopt);
   line(out, "state hash", state_hash_text(world));

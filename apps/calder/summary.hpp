@@ -28,7 +28,7 @@ namespace calder::app {
 void print_summary(std::ostream& out, const Simulation& simulation, std::uint32_t seed,
                    const std::string& source,
                    const std::function<void()>& before_printing = nullptr,
-                   const EnergyWatch* energy = nullptr);
+                   const EnergyWatch* energy_watch = nullptr);
 
 // At most this many pairs (about half a second) are summed exactly.
 constexpr std::uint64_t summary_potential_pairs = std::uint64_t{1} << 25;
