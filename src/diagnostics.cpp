@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <limits>
 #include <type_traits>
 #include <variant>
 #include <vector>
@@ -239,15 +240,21 @@ bool conserves_energy(const World& world) {
   return true;
 }
 
+bool energy_watchable(const World& world) {
+  return conserves_energy(world) &&
+         potential_energy_cost(world, std::numeric_limits<std::uint64_t>::max()) <=
+             kEnergyWatchTerms;
+}
+
 EnergyWatch::EnergyWatch(const World& world, double threshold) : threshold_(threshold) {
-  if (!conserves_energy(world)) return;
+  if (!energy_watchable(world)) return;
   start_ = total_energy(world);
   active_ = std::isfinite(start_);
 }
 
 EnergyWatch::EnergyWatch(const World& world, double threshold, double start_energy)
     : threshold_(threshold) {
-  if (!conserves_energy(world)) return;
+  if (!energy_watchable(world)) return;
   start_ = start_energy;
   active_ = std::isfinite(start_);
 }

@@ -129,6 +129,7 @@ class EnergyMonitor {
   // builds its scene's start again (the snapshot holds the scene and seed).
   static double start_energy(const Simulation& simulation) {
     try {
+      if (!energy_watchable(simulation.world())) return std::numeric_limits<double>::quiet_NaN();
       if (simulation.frame() == 0) return total_energy(simulation.world());
       const Simulation start(simulation.scene());
       return total_energy(start.world());

@@ -86,10 +86,17 @@ bool conserves_energy(const World& world);
 // for a close approach. Measure it after every frame (or every few), and
 // warn the first time it passes the threshold.
 inline constexpr double kDefaultEnergyThreshold = 1e-6;
+// The most pair terms one measurement of the watch sums (potential_energy_cost):
+// past them the exact energy costs more than a frame should, and a sampled
+// estimate can't show an error of 1e-6, so the watch measures nothing.
+inline constexpr std::uint64_t kEnergyWatchTerms = std::uint64_t{1} << 22;
+// Whether the watch can measure this world: it conserves energy and its exact
+// energy costs at most kEnergyWatchTerms terms.
+bool energy_watchable(const World& world);
 class EnergyWatch {
  public:
-  // Records the energy now; inactive (measures nothing) when the world
-  // doesn't conserve energy or its potential isn't known.
+  // Records the energy now; inactive (measures nothing) when the world isn't
+  // energy_watchable or its potential isn't known.
   explicit EnergyWatch(const World& world, double threshold = kDefaultEnergyThreshold);
   // Measures from a start energy given (a run resumed from a snapshot: the
   // energy of its scene's first frame); inactive when not finite.

@@ -764,7 +764,7 @@ case "$case_name" in
     run_calder nosuch --help
     expect_error 2 "unknown command 'nosuch'; the commands are list, run, render, window, devices and sweep"
     run_calder
-    expect_error 2 "a command is required: list, run, render, window or devices"
+    expect_error 2 "a command is required: list, run, render, window, devices or sweep"
     ;;
   near_scene_names)
     run_calder run example2.7
