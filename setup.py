@@ -6,6 +6,7 @@ Python that runs pip (the venv's), against Debian's pybind11 (pybind11-dev).
 Set CMAKE_BUILD_PARALLEL_LEVEL to change the number of compile jobs.
 """
 
+import json
 import os
 import pathlib
 import shutil
@@ -18,20 +19,22 @@ from setuptools.command.build_ext import build_ext
 ROOT = pathlib.Path(__file__).resolve().parent
 
 
+def python_preset_options():
+    """The cache variables of CMakePresets.json's "python" preset: pip builds
+    what `cmake --preset python` builds, with the same components off."""
+    presets = json.loads((ROOT / "CMakePresets.json").read_text())
+    for preset in presets["configurePresets"]:
+        if preset["name"] == "python":
+            return preset["cacheVariables"]
+    raise RuntimeError("setup.py: CMakePresets.json has no configure preset named python")
+
+
 class CMakeBuild(build_ext):
     def build_extension(self, ext):
         build_dir = pathlib.Path(self.build_temp).resolve() / "cmake"
-        configure = [
-            "cmake", "-S", str(ROOT), "-B", str(build_dir),
-            "-DCMAKE_BUILD_TYPE=Release",
-            "-DCALDER_BUILD_PYTHON=ON",
-            "-DCALDER_BUILD_TESTS=OFF",
-            "-DCALDER_BUILD_EXAMPLES=OFF",
-            "-DCALDER_BUILD_APPS=OFF",
-            "-DCALDER_BUILD_BENCHMARKS=OFF",
-            "-DCALDER_WARNINGS_AS_ERRORS=OFF",
-            f"-DPython_EXECUTABLE={sys.executable}",
-        ]
+        configure = ["cmake", "-S", str(ROOT), "-B", str(build_dir)]
+        configure += [f"-D{name}={value}" for name, value in python_preset_options().items()]
+        configure += ["-DCALDER_WARNINGS_AS_ERRORS=OFF", f"-DPython_EXECUTABLE={sys.executable}"]
         if shutil.which("ninja") and not (build_dir / "CMakeCache.txt").exists():
             configure += ["-G", "Ninja"]
         subprocess.run(configure, check=True)
