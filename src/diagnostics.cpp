@@ -261,7 +261,8 @@ EnergyWatch::EnergyWatch(const World& world, double threshold, double start_ener
 
 bool EnergyWatch::observe(const World& world, std::int64_t frame) {
   if (!active_) return false;
-  const double change = std::fabs(total_energy(world) - start_);
+  last_energy_ = total_energy(world);
+  const double change = std::fabs(last_energy_ - start_);
   last_ = start_ != 0.0 ? change / std::fabs(start_) : change;
   if (!(last_ <= worst_)) worst_ = last_;  // a NaN is the worst
   if (first_over_ >= 0 || !(last_ > threshold_ || std::isnan(last_))) return false;

@@ -109,7 +109,7 @@ class EnergyMonitor {
     }
     if (listed) {
       lines_ << "energy frame " << frame << " t " << format_number(simulation.world().time())
-             << " total " << format_number(total_energy(simulation.world())) << " relative error "
+             << " total " << format_number(watch_.last_energy()) << " relative error "
              << format_number(watch_.last_error()) << '\n';
     }
   }

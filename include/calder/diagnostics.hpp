@@ -106,6 +106,8 @@ class EnergyWatch {
   [[nodiscard]] bool active() const { return active_; }
   [[nodiscard]] double start_energy() const { return start_; }
   [[nodiscard]] double last_error() const { return last_; }
+  // The total energy the last observe measured (0 before the first).
+  [[nodiscard]] double last_energy() const { return last_energy_; }
   [[nodiscard]] double worst_error() const { return worst_; }
   [[nodiscard]] double threshold() const { return threshold_; }
   // The first frame observed past the threshold, or -1.
@@ -116,6 +118,7 @@ class EnergyWatch {
   double start_ = 0.0;
   double threshold_ = kDefaultEnergyThreshold;
   double last_ = 0.0;
+  double last_energy_ = 0.0;
   double worst_ = 0.0;
   std::int64_t first_over_ = -1;
 };
