@@ -8,7 +8,8 @@
 #
 #   bench/rebound_compare.sh [--repetitions N] [--output FILE] [--work DIR]
 #
-#   --repetitions N  whole runs per problem; the best wall time counts (5)
+#   --repetitions N  whole runs per problem, calder and REBOUND in turn; the
+#                    best wall time counts (5)
 #   --output FILE    also write the table to FILE (bench/results/rebound-ias15.md)
 #   --work DIR       where REBOUND is fetched and built (BUILD/rebound-compare)
 #
@@ -52,7 +53,7 @@ while [[ $# -gt 0 ]]; do
       shift
       ;;
     -h | --help)
-      sed -n '3,25s/^# \{0,1\}//p' "$0"
+      sed -n '3,26s/^# \{0,1\}//p' "$0"
       exit 0
       ;;
     *) usage_error "unknown argument '$1' (see --help)" ;;
@@ -88,7 +89,7 @@ if [[ -n ${REBOUND_SRC:-} ]]; then
     rm -rf "$src" && mkdir -p "$src"
     git --git-dir="$gitdir" archive "$ref" src | tar -x -C "$src" ||
       die "cannot export $ref from the git directory $REBOUND_SRC"
-    where="$ref from the git directory $REBOUND_SRC"
+    where="tag $ref of the git directory $REBOUND_SRC"
   else
     die "REBOUND_SRC=$REBOUND_SRC is neither a REBOUND source tree (src/rebound.h) nor a git directory holding $ref"
   fi
@@ -102,7 +103,7 @@ else
       die "cannot fetch REBOUND $ref from $url (no network? see $work/clone.log); set REBOUND_SRC to a REBOUND source tree or git directory"
     fi
   fi
-  where="$ref cloned from $url"
+  where="tag $ref cloned from $url"
 fi
 version=$(sed -n 's/.*reb_version_str = "\([^"]*\)".*/\1/p' "$src/src/rebound.c" | head -n 1)
 [[ -n $version ]] || die "$src/src/rebound.c: no reb_version_str: not a REBOUND source tree?"
@@ -141,10 +142,12 @@ read -r busy0 total0 < <(cpu_busy)
 start=$(date -u '+%Y-%m-%d %H:%M UTC')
 echo "$me: timing calder and REBOUND, best of $repetitions ..." >&2
 results=$work/results.tsv
-{
-  "$calder_exe" "$repetitions"
-  "$driver" "$repetitions"
-} >"$results" || die "a run failed (see $results)"
+# Turn about, one whole run each per round, so that the load of the machine
+# weighs on both sides alike; the table keeps each row's best.
+for ((round = 1; round <= repetitions; ++round)); do
+  "$calder_exe" 1 || die "bench_classic failed"
+  "$driver" 1 || die "rebound_classic failed"
+done >"$results"
 read -r busy1 total1 < <(cpu_busy)
 cores=$(nproc)
 # What the machine did besides one core of ours: (busy - one core) / all cores.
@@ -172,7 +175,12 @@ awk -F'\t' -v reps="$repetitions" '
   /^#/ { next }
   {
     key = $1 SUBSEP $2 SUBSEP $3
-    steps[key] = $4; evals[key] = $5; wall[key] = $6; err[key] = $7
+    if ((key in steps) && steps[key] != $4) {
+      print "the runs of " $1 " " $2 " took " steps[key] " and " $4 " steps" > "/dev/stderr"
+      exit 1
+    }
+    if (!(key in wall) || $6 < wall[key]) wall[key] = $6
+    steps[key] = $4; evals[key] = $5; err[key] = $7
     if ($1 == "calder") { iters[$2] = $8; rejected[$2] = $9 }
   }
   END {
@@ -183,8 +191,8 @@ awk -F'\t' -v reps="$repetitions" '
     label["calder" SUBSEP "frames"] = "calder ias15"
     label["rebound" SUBSEP "frames"] = "REBOUND IAS15, to each frame end"
     label["rebound" SUBSEP "whole"] = "REBOUND IAS15, to the end at once"
-    print "| problem | run | steps | force evaluations | per step | wall (s) | energy error | calder / this: steps | calder / this: wall |"
-    print "|---|---|--:|--:|--:|--:|--:|--:|--:|"
+    print "| problem | run | steps | force evaluations | per step | wall (s) | µs per step | energy error | calder / this: steps | calder / this: wall |"
+    print "|---|---|--:|--:|--:|--:|--:|--:|--:|--:|"
     for (p = 1; p <= 3; ++p) {
       name = problems[p]
       c = "calder" SUBSEP name SUBSEP "frames"
@@ -194,9 +202,10 @@ awk -F'\t' -v reps="$repetitions" '
         key = part[1] SUBSEP name SUBSEP part[2]
         if (!(key in steps)) continue
         mine = part[1] == "calder"
-        printf "| %s | %s | %s | %s | %.1f | %.3g | %s | %s | %s |\n", \
+        printf "| %s | %s | %s | %s | %.1f | %.3g | %.2f | %s | %s | %s |\n", \
           r == 1 ? title[name] : "", label[part[1] SUBSEP part[2]], thousands(steps[key]), \
-          thousands(evals[key]), evals[key] / steps[key], wall[key], err[key], \
+          thousands(evals[key]), evals[key] / steps[key], wall[key], 1e6 * wall[key] / steps[key], \
+          err[key], \
           mine ? "" : ratio(steps[c], steps[key]), mine ? "" : ratio(wall[c], wall[key])
       }
     }
@@ -212,10 +221,10 @@ awk -F'\t' -v reps="$repetitions" '
   echo "## Machine"
   echo
   echo "- CPU: ${cpu:-unknown CPU}, $cores logical cores"
-  echo "- calder: $calder_exe, ${cxx_version:-$cxx}, build type ${build_type:-unknown}"
+  echo "- calder: ${calder_exe#"$root"/}, ${cxx_version:-$cxx}, build type ${build_type:-unknown}"
   echo "- REBOUND: $version ($where), built by this script with $cc_version, ${cflags[*]}"
   echo "- date: $start; load average $load_start at the start"
-  echo "- timing: best of $repetitions whole runs per row (making the simulation, integrating, one thread), wall clock"
+  echo "- timing: best of $repetitions whole runs per row (making the simulation, integrating, one thread), calder's and REBOUND's in turn; wall clock"
   echo "- others: other processes took $others of the CPUs during the run (0% for clean figures)"
   echo
   echo "## ias15 beside REBOUND's IAS15 (epsilon 1e-9)"
@@ -226,6 +235,7 @@ awk -F'\t' -v reps="$repetitions" '
   echo "- calder ends every frame exactly (World::step advances dt): 700 frames of 0.1, 1,200 of a 120th of the period, 1,000 of one orbit. REBOUND to each frame end does the same with exact_finish_time; to the end at once is REBOUND's one call to t_end."
   echo "- Force evaluations: calder counts them (AdaptiveStats); REBOUND's through a no-op additional_forces callback, in an untimed run. One per step's start plus seven per predictor-corrector iteration."
   echo "- Energy error: |E - E0| / |E0| at the end, kinetic plus pair potential energy (Kepler: of the orbiting unit mass around the fixed one)."
+  echo "- Per step, REBOUND integrates three coordinates a body (x, y, z; here z stays 0), calder two: the problems are planar."
   echo "- Command: bench/rebound_compare.sh --repetitions $repetitions${output:+ --output $output}"
 } >"$table"
 
