@@ -122,7 +122,7 @@ if [[ ! -f $lib/librebound.a || $(cat "$lib/stamp" 2>/dev/null) != "$stamp" ]]; 
   echo "$stamp" >"$lib/stamp"
 fi
 driver=$work/rebound_classic
-"$cc" "${cflags[@]}" -Wall -Wextra -Werror -I"$src/src" -o "$driver" \
+"$cc" "${cflags[@]}" -Wall -Wextra -Werror -isystem "$src/src" -o "$driver" \
   "$root/bench/peers/rebound_classic.c" "$lib/librebound.a" -lm -lpthread ||
   die "cannot build bench/peers/rebound_classic.c against REBOUND $version"
 
