@@ -7,9 +7,8 @@
 //   FigureEight    the figure-eight choreography, ten periods (1200 frames)
 //   Kepler09       a Kepler orbit of e = 0.9, 1,000 orbits, one frame per orbit
 //
-// REBOUND 5.0's IAS15 on the same problems (issue figures, measured with
-// the same energy formula on one core): Pythagorean 5,380 steps, 0.04 s;
-// figure eight 10,308 steps; Kepler 98,000 steps, 0.5 s.
+// REBOUND's IAS15 on the same problems, in the same run: bench/rebound_compare.sh
+// (its figures in bench/results/rebound-ias15.md).
 #include <benchmark/benchmark.h>
 
 #include <cmath>

@@ -10,6 +10,7 @@
 
 #include "calder/error.hpp"
 #include "calder/scene.hpp"
+#include "kepler_orbit.hpp"
 
 namespace calder {
 
@@ -542,16 +543,18 @@ Scene figure_eight() {
 // The Kepler problem: a body around a fixed unit mass (an attractor), on an
 // orbit of semi-major axis 1 and eccentricity 0.9 (period 2 pi), from its
 // pericentre (1 - e, 0) at the vis-viva speed sqrt((1 + e) / (1 - e)). A
-// frame is a 60th of the period: 600 frames, ten orbits.
+// frame is a 60th of the period: 600 frames, ten orbits. scenes/kepler.toml
+// gives the orbit as a key, kepler = { eccentricity = 0.9, ... }, for
+// another eccentricity.
 Scene kepler() {
   constexpr double kUnit = 100.0;
+  constexpr double kGM = kUnit * kUnit * kUnit;  // G, times the unit mass
   Scene s = classic("kepler", "A Kepler orbit of eccentricity 0.9 around a fixed mass: ten orbits",
                     kUnit);
   s.fields.clear();
-  s.fields.push_back(
-      field(Attractor{.position = {0.0, 0.0}, .mass = 1.0, .law = newton(kUnit * kUnit * kUnit)}));
-  // (1 - e) kUnit and sqrt((1 + e) / (1 - e)) kUnit, the latter rounded once.
-  s.bodies.push_back(one_body({10.0, 0.0}, 1.0, fixed_radius(5.0), {0.0, std::sqrt(190000.0)}));
+  s.fields.push_back(field(Attractor{.position = {0.0, 0.0}, .mass = 1.0, .law = newton(kGM)}));
+  const detail::Pericentre start = detail::pericentre(kGM, kUnit, 0.9);
+  s.bodies.push_back(one_body({start.distance, 0.0}, 1.0, fixed_radius(5.0), {0.0, start.speed}));
   s.origin = {480.0, 240.0};
   s.world.dt = 2.0 * 3.141592653589793 / 60.0;
   s.frames = 600;

@@ -552,6 +552,132 @@ radius = { per_sqrt_mass = 1 }
   }
 }
 
+// --- kepler = { ... }: a body at the pericentre of a Kepler orbit ------------------------
+
+// A [[bodies]] table of one body on the orbit, after `extra` lines.
+std::string kepler_body(std::string_view orbit, std::string_view extra = "") {
+  return "[[bodies]]\n" + std::string(extra) + "kepler = " + std::string(orbit) + "\nmass = 1\n";
+}
+
+TEST(SceneFileKepler, TheOrbitStartsAtPericentreAtTheVisVivaSpeed) {
+  // a = 2, e = 0.5 about a GM of 3 at (3, 4): q = a (1 - e) = 1, and
+  // v^2 = GM (2 / q - 1 / a) = 4.5.
+  const Scene s = calder::parse_scene(
+      kepler_body("{ GM = 3, semi_major_axis = 2, eccentricity = 0.5, focus = [3, 4] }"), "t.toml");
+  Simulation sim(s);
+  const calder::BodyView b = sim.world().bodies();
+  ASSERT_EQ(b.size(), 1u);
+  EXPECT_DOUBLE_EQ(b.x[0], 4.0);
+  EXPECT_DOUBLE_EQ(b.y[0], 4.0);
+  EXPECT_EQ(b.vx[0], 0.0);
+  EXPECT_DOUBLE_EQ(b.vy[0], std::sqrt(4.5));
+  // Without eccentricity the orbit is a circle: v = sqrt(GM / a), at a from the origin.
+  const Scene circle =
+      calder::parse_scene(kepler_body("{ GM = 8, semi_major_axis = 2 }"), "t.toml");
+  Simulation round(circle);
+  EXPECT_EQ(round.world().bodies().x[0], 2.0);
+  EXPECT_EQ(round.world().bodies().y[0], 0.0);
+  EXPECT_DOUBLE_EQ(round.world().bodies().vy[0], 2.0);
+}
+
+TEST(SceneFileKepler, SceneFileGivesTheBuiltinBitsForEccentricity09) {
+  // scenes/kepler.toml states the built-in's orbit as the key: the same bits
+  // as the numbers the built-in had written out, (10, 0) and sqrt(190000).
+  const Scene s = calder::load_scene_file(scene_path("kepler"));
+  ASSERT_EQ(s.bodies.size(), 1u);
+  EXPECT_EQ(bits(s.bodies[0].x.value), bits(10.0));
+  EXPECT_EQ(bits(s.bodies[0].y.value), bits(0.0));
+  EXPECT_EQ(bits(s.bodies[0].vx.value), bits(0.0));
+  EXPECT_EQ(bits(s.bodies[0].vy.value), bits(std::sqrt(190000.0)));
+}
+
+TEST(SceneFileKepler, RefusesAnEccentricityOutsideTheEllipses) {
+  for (const char* e : {"1", "1.5", "-0.1", "1e300"}) {
+    const std::string orbit =
+        std::string("{ GM = 1, semi_major_axis = 1, eccentricity = ") + e + " }";
+    EXPECT_EQ(error_of(kepler_body(orbit)),
+              std::string("t.toml:2:56: 'kepler.eccentricity' must be >= 0 and < 1 (an ellipse), "
+                          "got ") +
+                  (std::string(e) == "1e300" ? "1e+300" : e))
+        << e;
+  }
+  EXPECT_EQ(error_of(kepler_body("{ GM = 1, semi_major_axis = 1, eccentricity = nan }")),
+            "t.toml:2:56: 'kepler.eccentricity' must be a finite number, got nan");
+  EXPECT_EQ(error_of(kepler_body("{ GM = 1, semi_major_axis = 1, eccentricity = \"high\" }")),
+            "t.toml:2:56: 'kepler.eccentricity' must be a number, got a string");
+  // A GM so large that the pericentre speed overflows.
+  EXPECT_EQ(error_of(kepler_body("{ GM = 1e308, semi_major_axis = 1, eccentricity = 0.9 }")),
+            "t.toml:2:10: 'kepler': the pericentre of GM 1e+308, a 1, e 0.9 is not a finite "
+            "place and speed");
+}
+
+TEST(SceneFileKepler, RefusesWhatTheOrbitCannotBe) {
+  EXPECT_EQ(error_of(kepler_body("{ semi_major_axis = 1 }")),
+            "t.toml:2:10: missing required key 'GM' in 'kepler'");
+  EXPECT_EQ(error_of(kepler_body("{ GM = 1, semi_major_axis = 0 }")),
+            "t.toml:2:38: 'kepler.semi_major_axis' must be > 0, got 0");
+  EXPECT_EQ(error_of(kepler_body("{ GM = -1, semi_major_axis = 1 }")),
+            "t.toml:2:17: 'kepler.GM' must be > 0, got -1");
+  EXPECT_THAT(error_of(kepler_body("{ GM = 1, semi_major_axis = 1, eccentricty = 0.5 }")),
+              StartsWith("t.toml:2:41: unknown key 'eccentricty' in 'kepler' (did you mean "
+                         "'eccentricity'?)"));
+  EXPECT_EQ(error_of(kepler_body("0.9")),
+            "t.toml:2:10: 'kepler' must be an inline table { GM = ..., semi_major_axis = ... }, "
+            "got a float");
+  EXPECT_EQ(error_of(kepler_body("{ GM = 1, semi_major_axis = 1 }", "position = [0, 0]\n")),
+            "t.toml:2:1: 'position' can't be given with 'kepler' (it places the body at the "
+            "orbit's pericentre, moving)");
+  EXPECT_EQ(error_of(kepler_body("{ GM = 1, semi_major_axis = 1 }", "count = 2\n")),
+            "t.toml:2:1: 'kepler' starts one body, but 'count' is 2 (one [[bodies]] table per "
+            "orbit)");
+  EXPECT_EQ(error_of(kepler_body("{ GM = 1, semi_major_axis = 1 }", "layout = \"orbit\"\n")),
+            "t.toml:3:1: 'kepler' is not used with layout = \"orbit\" (it places bodies with "
+            "center, distance and speed)");
+}
+
+// The physics of another eccentricity from the key: e = 0.5 for 1,000
+// orbits (period 2 pi: a = 100 px, GM = 100^3), one frame per orbit. The
+// energy stays -GM m / (2 a) to 1e-12, and after each orbit the body is back
+// at its pericentre, (a (1 - e), 0) = (50, 0), moving along +y.
+TEST(SceneFileKepler, Eccentricity05Over1000OrbitsKeepsEnergyAndPericentre) {
+  Scene s = calder::parse_scene(R"(
+frames = 1000
+[world]
+dt = 6.283185307179586
+integrator = "ias15"
+[[bodies]]
+kepler = { GM = 1e6, semi_major_axis = 100, eccentricity = 0.5 }
+mass = 1
+[[fields]]
+type = "attractor"
+position = [0, 0]
+mass = 1
+law = { G = 1e6, clamp = "none" }
+)",
+                                "t.toml");
+  Simulation sim(s);
+  calder::World& world = sim.world();
+  const double e0 = calder::total_energy(world);
+  EXPECT_NEAR(e0, -0.5 * 1e4, 1e-9);
+  double worst = 0.0;
+  while (sim.frame() < sim.scene().frames) {
+    sim.step();
+    worst = std::max(worst, std::fabs((calder::total_energy(world) - e0) / e0));
+  }
+  EXPECT_LT(worst, 1e-12);
+  const calder::Vec2 p = world.position(world.body(0));
+  const calder::Vec2 v = world.velocity(world.body(0));
+  EXPECT_NEAR(p.x, 50.0, 1e-7);
+  EXPECT_NEAR(p.y, 0.0, 1e-6);  // the phase after 1,000 orbits: 1e-6 px / 173 px per unit time
+  EXPECT_NEAR(v.x, 0.0, 1e-6);
+  EXPECT_GT(v.y, 0.0);
+  // The eccentricity vector (v x (r x v)) / GM - r / |r| points at the pericentre.
+  const double h = p.x * v.y - p.y * v.x;
+  const calder::Vec2 ecc{v.y * h / 1e6 - p.x / p.mag(), -v.x * h / 1e6 - p.y / p.mag()};
+  EXPECT_NEAR(ecc.mag(), 0.5, 1e-11);
+  EXPECT_NEAR(std::atan2(ecc.y, ecc.x), 0.0, 1e-11);
+}
+
 TEST(SceneFile, InputScript) {
   const Scene s = calder::parse_scene(R"(
 [input]

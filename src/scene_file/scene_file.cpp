@@ -30,6 +30,7 @@
 #include <variant>
 #include <vector>
 
+#include "../kepler_orbit.hpp"
 #include "calder/error.hpp"
 #include "calder/fields.hpp"
 #include "calder/scene.hpp"
@@ -122,6 +123,7 @@ class Reader : public TomlReader {
   BodyGroup body_group(const toml::table& t, std::size_t total_before) const;
   void coordinates(const Tbl& b, std::string_view both, std::string_view first,
                    std::string_view second, Draw& a, Draw& c, bool required) const;
+  void kepler(const Tbl& b, BodyGroup& g) const;
   RadiusRule radius(const toml::node& n) const;
   SceneField field(const toml::table& t) const;
   std::string field_type(const toml::table& t) const;
@@ -298,7 +300,7 @@ BodyGroup Reader::body_group(const toml::table& t, std::size_t total_before) con
   BodyGroup g;
   g.layout = b.choice("layout", kLayouts, g.layout);
   const Keys common = {"count", "layout", "mass", "radius", "friction", "drag_area"};
-  const Keys grid_only = {"x", "y", "position", "vx", "vy", "velocity"};
+  const Keys grid_only = {"x", "y", "position", "vx", "vy", "velocity", "kepler"};
   const Keys orbit_only = {"center", "distance", "speed"};
   const bool orbit = g.layout == BodyGroup::Layout::orbit;
   // A key of the other layout gets its own message rather than "unknown key".
@@ -339,6 +341,8 @@ BodyGroup Reader::body_group(const toml::table& t, std::size_t total_before) con
     g.center = b.vec2("center", g.center);
     g.distance = draw(b.require("distance"), "distance", Check::any);
     g.speed = draw(b.require("speed"), "speed", Check::any);
+  } else if (b.find("kepler") != nullptr) {
+    kepler(b, g);
   } else {
     // position = [x, y] or x and y; velocity = [vx, vy] or vx and vy.
     coordinates(b, "position", "x", "y", g.x, g.y, true);
@@ -374,6 +378,47 @@ void Reader::coordinates(const Tbl& b, std::string_view both, std::string_view f
   }
   if (na != nullptr || required) a = draw(b.require(first), std::string(first), Check::any);
   if (nc != nullptr || required) c = draw(b.require(second), std::string(second), Check::any);
+}
+
+// kepler = { GM = ..., semi_major_axis = a, eccentricity = e, focus = [x, y] }:
+// one body at the orbit's pericentre, focus + (a (1 - e), 0), moving along
+// +y at the vis-viva speed (clockwise on the y-down canvas). It stands for
+// position and velocity, which the scene then holds.
+void Reader::kepler(const Tbl& b, BodyGroup& g) const {
+  for (const std::string_view key : {"x", "y", "position", "vx", "vy", "velocity"}) {
+    if (b.find(key) != nullptr) {
+      fail(b.key_at(key), cat(quote(key),
+                              " can't be given with 'kepler' (it places the body at "
+                              "the orbit's pericentre, moving)"));
+    }
+  }
+  if (g.count > 1) {
+    fail(b.key_at("count"), cat("'kepler' starts one body, but 'count' is ",
+                                std::to_string(g.count), " (one [[bodies]] table per orbit)"));
+  }
+  const toml::node& n = *b.find("kepler");
+  const Tbl k(*this, table_of(n, "kepler", "an inline table { GM = ..., semi_major_axis = ... }"),
+              "'kepler'", "kepler.");
+  k.allow({"GM", "semi_major_axis", "eccentricity", "focus"});
+  const double gm = number(k.require("GM"), k.label("GM"), Check::positive);
+  const double a =
+      number(k.require("semi_major_axis"), k.label("semi_major_axis"), Check::positive);
+  const double e = k.number("eccentricity", 0.0);
+  if (!(e >= 0.0 && e < 1.0)) {
+    fail(*k.find("eccentricity"),
+         cat("'kepler.eccentricity' must be >= 0 and < 1 (an ellipse), got ", format_number(e)));
+  }
+  const Vec2 focus = k.vec2("focus", {0.0, 0.0});
+  const detail::Pericentre p = detail::pericentre(gm, a, e);
+  const Vec2 at{focus.x + p.distance, focus.y};
+  if (!(p.distance > 0.0) || !std::isfinite(p.speed) || !std::isfinite(at.x)) {
+    fail(n, cat("'kepler': the pericentre of GM ", format_number(gm), ", a ", format_number(a),
+                ", e ", format_number(e), " is not a finite place and speed"));
+  }
+  g.x = Draw::fixed(at.x);
+  g.y = Draw::fixed(at.y);
+  g.vx = Draw::fixed(0.0);
+  g.vy = Draw::fixed(p.speed);
 }
 
 // A number, { per_mass = k } or { per_sqrt_mass = k }.
