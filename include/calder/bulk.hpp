@@ -13,11 +13,11 @@
 //   ... add 100000 bodies, Gravity, Drag, a bounce boundary ...
 //   world.step(1000);                     // vectorised, threaded, cache-blocked
 //
-// What they run: semi-implicit Euler, the simultaneous update order, and
-// every field kind with a law over lanes (calder/field_kinds/; an Attractor
-// with the inverse-square laws: the book clamp, the squared clamp, Plummer),
-// with the bounce, wrap or no boundary: all kinds but MutualAttraction and
-// CustomForce, which step body by body as before (unsupported() says why).
+// What they run: semi-implicit Euler, the simultaneous update order, every
+// field kind with a per-body law (an Attractor with the inverse-square laws:
+// the book clamp, the squared clamp, Plummer), the bounce, wrap or no
+// boundary: all kinds but MutualAttraction and CustomForce, which step body
+// by body as before (unsupported() says why).
 //
 // How: the fields are compiled once per batch into a list of ops (plan.cpp:
 // one op per enabled field). The bodies are cut into tiles of kTile; one
