@@ -33,11 +33,14 @@
 #include <string>
 #include <vector>
 
-#include "calder/output.hpp"
 #include "calder/scene.hpp"
 #include "calder/world.hpp"
 
 namespace calder {
+
+namespace output {
+class AppendFile;  // the output policy's appendable file (src/output/)
+}  // namespace output
 
 // The newest format version; every version from 1 to it is read. A snapshot
 // is written as version 1 unless it holds an adaptive integrator's state
@@ -102,7 +105,7 @@ void save_snapshot(const World& world, const std::string& path);
 // appends an index of the records; without one (a killed run), the reader
 // rebuilds it by reading the records' headers only.
 //
-// A writer goes through the output policy (calder/output.hpp, AppendFile):
+// A writer goes through the output policy (apps/README.md, "Output files"):
 // it holds an exclusive lock on the file while it lives (a second writer is
 // refused), creates a new archive or appends to an existing one after its
 // last complete snapshot, and refuses a file that is not an archive. Nothing

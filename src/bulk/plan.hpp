@@ -13,8 +13,8 @@
 #include <vector>
 
 #include "../field_kinds/laws.hpp"
+#include "../step_batch.hpp"
 #include "calder/fields.hpp"
-#include "calder/step_batch.hpp"
 #include "calder/world.hpp"
 
 namespace calder::bulk::detail {

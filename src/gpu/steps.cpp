@@ -11,9 +11,9 @@
 #include <vector>
 
 #include "../bulk/plan.hpp"
+#include "../step_batch.hpp"
 #include "calder/error.hpp"
 #include "calder/gpu.hpp"
-#include "calder/step_batch.hpp"
 #include "context.hpp"
 #include "shaders.hpp"
 #include "shaders/interface.h"
