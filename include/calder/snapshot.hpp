@@ -14,11 +14,9 @@
 //   calder::save_snapshot(simulation, "run.snap");
 //   calder::Simulation resumed = calder::load_simulation("run.snap");
 //
-// The format (docs/SNAPSHOTS.md) is little-endian on every platform, has a
-// version and a CRC-32 per section, and is read without calder by a few lines
-// of numpy (python/calder/snapshot_reader.py). A file that is truncated,
-// corrupted, of another version or not a snapshot is refused with an
-// InputError whose one line names the file and what is wrong.
+// The format is docs/SNAPSHOTS.md's (numpy reads it without calder). A file
+// that is truncated, corrupted, of another version or not a snapshot is
+// refused with an InputError whose one line names the file and what is wrong.
 //
 // A world holding C++ code (a CustomForce field, an AttractionLaw with a
 // custom function) can't be saved: save throws calder::Error naming the field.
