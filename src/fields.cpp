@@ -10,6 +10,7 @@
 #include "calder/error.hpp"
 #include "calder/random.hpp"
 #include "calder/world.hpp"
+#include "field_kinds/laws.hpp"
 
 namespace calder {
 
@@ -45,7 +46,7 @@ void accumulate_each(const FieldContext& c, std::size_t first, std::size_t last,
   for (std::size_t i = first; i < last; ++i) add_force(ax, ay, i, force_of(i), c.bodies.mass[i]);
 }
 
-// One body as the laws of calder/field_kinds/ read it (lanes.hpp): its state,
+// One body as the laws of src/field_kinds/ read it (lanes.hpp): its state,
 // the acceleration the fields add to, and its constants from the view.
 struct BodyLane {
   double x, y, vx, vy, ax, ay;
@@ -58,15 +59,15 @@ struct BodyLane {
   [[nodiscard]] double mu() const { return view->friction[i]; }  // NaN: none of its own
 };
 
-// A kind's law (FieldKind<F>::run) on the bodies of the range, one at a time,
+// A kind's law (FieldLaw<F>::run) on the bodies of the range, one at a time,
 // in the book's arithmetic.
 template <class F>
-void accumulate_law(const typename FieldKind<F>::template Law<double>& law, const FieldContext& c,
+void accumulate_law(const typename FieldLaw<F>::template Law<double>& law, const FieldContext& c,
                     std::size_t first, std::size_t last, std::span<double> ax,
                     std::span<double> ay) {
   const BodyView& v = c.bodies;
   const lanes::Frame<double> frame{c.width, c.height, c.dt, 0};
-  FieldKind<F>::template run<lanes::ScalarBook>(
+  FieldLaw<F>::template run<lanes::ScalarBook>(
       [&](auto op) {
         for (std::size_t i = first; i < last; ++i) {
           BodyLane b{v.x[i], v.y[i], v.vx[i], v.vy[i], ax[i], ay[i], &v, i};
@@ -146,11 +147,11 @@ void accumulate_mutual(const MutualAttraction& f, const FieldContext& c, std::si
 template <class F>
 void accumulate_kind(const F& f, const FieldContext& c, std::size_t first, std::size_t last,
                      std::span<double> ax, std::span<double> ay) {
-  if constexpr (requires { FieldKind<F>::force(f, c, first); }) {
+  if constexpr (requires { FieldLaw<F>::force(f, c, first); }) {
     accumulate_each(c, first, last, ax, ay,
-                    [&](std::size_t i) { return FieldKind<F>::force(f, c, i); });
+                    [&](std::size_t i) { return FieldLaw<F>::force(f, c, i); });
   } else {
-    accumulate_law<F>(FieldKind<F>::template law<double>(f), c, first, last, ax, ay);
+    accumulate_law<F>(FieldLaw<F>::template law<double>(f), c, first, last, ax, ay);
   }
 }
 

@@ -8,8 +8,9 @@
 #include "calder/error.hpp"
 #include "calder/fields.hpp"
 #include "calder/random.hpp"
+#include "field_kinds/laws.hpp"
 
-// The laws are the field kinds' (calder/field_kinds/), instantiated here for
+// The laws are the field kinds' (src/field_kinds/), instantiated here for
 // one body in the book's arithmetic.
 namespace calder {
 
@@ -27,25 +28,25 @@ Vec2 gravity(Vec2 g, double mass, bool scale_by_mass) {
 }
 
 Vec2 helium(double lift) {
-  const auto law = FieldKind<Helium>::law<double>(Helium{.lift = lift});
+  const auto law = FieldLaw<Helium>::law<double>(Helium{.lift = lift});
   return {law.fx, law.fy};
 }
 
 Vec2 noise_wind(const Noise& noise, double time, double strength, double rate, double offset) {
-  return FieldKind<NoiseWind>::force<ScalarBook>(noise, time, strength, rate, offset);
+  return FieldLaw<NoiseWind>::force<ScalarBook>(noise, time, strength, rate, offset);
 }
 
 Vec2 fan(Vec2 fan_position, Vec2 body_position, double strength, double reach) {
-  const auto law = FieldKind<Fan>::law<double>(
+  const auto law = FieldLaw<Fan>::law<double>(
       Fan{.position = fan_position, .strength = strength, .reach = reach});
-  const auto blow = FieldKind<Fan>::force<ScalarBook>(law, body_position.x, body_position.y);
+  const auto blow = FieldLaw<Fan>::force<ScalarBook>(law, body_position.x, body_position.y);
   return blow.apply ? vec(blow.f) : Vec2{};
 }
 
 Vec2 edge_force(Vec2 position, double width, double height, double strength, double margin) {
   const auto law =
-      FieldKind<EdgeForce>::law<double>(EdgeForce{.strength = strength, .margin = margin});
-  return vec(FieldKind<EdgeForce>::force<ScalarBook>(law, position.x, position.y, width, height));
+      FieldLaw<EdgeForce>::law<double>(EdgeForce{.strength = strength, .margin = margin});
+  return vec(FieldLaw<EdgeForce>::force<ScalarBook>(law, position.x, position.y, width, height));
 }
 
 Vec2 friction(Vec2 velocity, double mu, double normal) {
@@ -63,7 +64,7 @@ Vec2 limit_drag(Vec2 drag_force, Vec2 velocity, double mass, double dt) {
 }
 
 Vec2 lift(Vec2 velocity, double coefficient) {
-  return vec(FieldKind<Lift>::force<ScalarBook>(velocity.x, velocity.y, coefficient));
+  return vec(FieldLaw<Lift>::force<ScalarBook>(velocity.x, velocity.y, coefficient));
 }
 
 Vec2 Liquid::calculate_drag(Vec2 velocity, double area) const { return drag(velocity, c, area); }

@@ -17,6 +17,7 @@
 
 #include "calder/error.hpp"
 #include "calder/snapshot.hpp"
+#include "output/output.hpp"
 #include "snapshot_bytes.hpp"
 
 namespace calder {

@@ -11,8 +11,8 @@
 #include <string>
 
 #include "calder/error.hpp"
-#include "calder/step_batch.hpp"
 #include "calder/world.hpp"
+#include "step_batch.hpp"
 
 namespace calder {
 

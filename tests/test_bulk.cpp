@@ -29,11 +29,11 @@
 #include "calder/forces.hpp"
 #include "calder/random.hpp"
 #include "calder/scene.hpp"
-#include "calder/step_batch.hpp"
 #include "calder/vec2.hpp"
 #include "calder/world.hpp"
 
-#include "../src/bulk/plan.hpp"  // book_quotients: the kernels' quotients by the mass
+#include "../src/bulk/plan.hpp"   // book_quotients: the kernels' quotients by the mass
+#include "../src/step_batch.hpp"  // StepBatch: what World::step hands the kernels
 
 namespace {
 

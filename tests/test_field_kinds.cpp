@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// The places outside calder/field_kinds/ that name field kinds agree with
+// The places outside the field kinds' headers that name them agree with
 // the kinds' descriptions (FieldKind<F>, the Field variant): the field table
 // of docs/SCENES.md lists every kind a scene file can hold, once; README.md,
 // python/README.md and calder/bulk.hpp name only kinds that exist, and
@@ -15,6 +15,7 @@
 #include <string>
 #include <variant>
 
+#include "../src/field_kinds/laws.hpp"  // HasLaw: the kinds with a law
 #include "calder/fields.hpp"
 
 namespace {

@@ -25,6 +25,7 @@
 #include <variant>
 #include <vector>
 
+#include "../src/field_kinds/laws.hpp"  // HasLaw: the kinds the GPU runs
 #include "support/test_support.hpp"
 
 namespace {

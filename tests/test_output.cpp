@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// The output module (calder/output.hpp): an atomic file appears whole or not
+// The output module (src/output/output.hpp): an atomic file appears whole or not
 // at all, and its temporary is in the registry the signal handler empties; an
 // appended file is put back byte for byte; the outputs of a run are checked
 // against its inputs and one another before anything is created.
@@ -9,7 +9,6 @@
 
 #include <algorithm>
 #include <calder/error.hpp>
-#include <calder/output.hpp>
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
@@ -17,6 +16,7 @@
 #include <mutex>
 #include <string>
 #include <vector>
+#include "../src/output/output.hpp"
 
 #include "support/test_support.hpp"
 

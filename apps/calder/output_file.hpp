@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 // calder command: an output file that appears whole or not at all.
 //
-// A buffered std::ostream onto output::AtomicFile (calder/output.hpp), which
+// A buffered std::ostream onto output::AtomicFile (src/output/output.hpp), which
 // decides how by the output policy (apps/README.md "Output files"): a new or
 // regular file is written to a temporary in its folder, renamed over it only
 // by commit(); a FIFO or a device is written directly; what the policy
@@ -10,13 +10,13 @@
 // removes it. The path "-" means standard output.
 #pragma once
 
-#include <calder/output.hpp>
 #include <memory>
 #include <optional>
 #include <ostream>
 #include <streambuf>
 #include <string>
 #include <vector>
+#include "../../src/output/output.hpp"
 
 namespace calder::app {
 

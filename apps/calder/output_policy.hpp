@@ -1,9 +1,9 @@
 // SPDX-License-Identifier: MIT
 // calder command: the output policy is calder's output module
-// (calder/output.hpp); the names the verbs use, here.
+// (src/output/output.hpp); the names the verbs use, here.
 #pragma once
 
-#include "calder/output.hpp"
+#include "../../src/output/output.hpp"
 
 namespace calder::app {
 

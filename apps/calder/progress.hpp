@@ -14,7 +14,7 @@
 #include <ostream>
 #include <string>
 
-#include "calder/output.hpp"
+#include "../../src/output/output.hpp"
 #include "errors.hpp"
 
 namespace calder::app {
@@ -67,7 +67,7 @@ class Interrupted : public RunError {
 };
 
 // While alive, the terminating signals only set a flag (calder's one handler,
-// output::InterruptScope in calder/output.hpp: its watchdog removes the
+// output::InterruptScope in src/output/output.hpp: its watchdog removes the
 // registered temporaries and ends a job that doesn't stop in time); check()
 // throws Interrupted once one arrived. The loops of a job call it once a frame.
 class InterruptGuard {

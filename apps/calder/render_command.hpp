@@ -67,7 +67,7 @@ CanvasSize canvas_size(const std::optional<std::string>& size,
                        const std::optional<std::string>& scale, const Scene& scene);
 
 // Throws InputError (naming `flag` and `path`) when the output policy refuses
-// path (calder/output.hpp; nothing is created).
+// path (src/output/output.hpp; nothing is created).
 void check_output_path(const std::string& flag, const std::string& path);
 
 // The scene's name made safe for a file name (letters, digits, '.', '-', '_').

@@ -21,7 +21,7 @@
 #include <string>
 #include <vector>
 
-#include "calder/output.hpp"
+#include "../../src/output/output.hpp"
 #include "calder/scene.hpp"
 #include "calder/snapshot.hpp"
 #include "output_file.hpp"

@@ -2,15 +2,11 @@
 // calder: what the adaptive integrator (Integrator::ias15) counts and what
 // it carries from one World::step() to the next.
 //
-// IAS15 (Rein & Spiegel 2015, MNRAS 446, 1424) fits the acceleration over an
-// internal step with a 7th-degree polynomial through Gauss-Radau nodes and
-// integrates it twice: 15th order, so its error for smooth forces stays at
-// the rounding of doubles. Its step follows Pham, Rein & Spiegel (2024):
-// the shortest timescale of acceleration, jerk and snap of any body, times
-// (5040 tolerance)^(1/7). A World::step() of dt takes as many internal steps
-// as it needs, the last ending exactly on the frame, and the next frame
-// starts from the step the last one proposed. A frame that would need more
-// than 100,000 internal steps throws calder::RunError (use a smaller dt).
+// IAS15 (Rein & Spiegel 2015; docs/DESIGN.md, "Integrators") is 15th order,
+// so its error for smooth forces stays at the rounding of doubles. A
+// World::step() of dt takes as many internal steps as it needs, the last
+// ending exactly on the frame; a frame that would need more than 100,000
+// throws calder::RunError (use a smaller dt).
 #pragma once
 
 #include <cstddef>

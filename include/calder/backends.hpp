@@ -19,7 +19,7 @@
 
 namespace calder {
 
-struct StepBatch;  // calder/step_batch.hpp
+struct StepBatch;  // what World::step hands the kernels (src/step_batch.hpp)
 struct MutualAttraction;
 struct FieldContext;
 

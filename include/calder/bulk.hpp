@@ -13,32 +13,18 @@
 //   ... add 100000 bodies, Gravity, Drag, a bounce boundary ...
 //   world.step(1000);                     // vectorised, threaded, cache-blocked
 //
-// What they run: semi-implicit Euler, the simultaneous update order, and
-// every field kind with a law over lanes (calder/field_kinds/; an Attractor
-// with the inverse-square laws: the book clamp, the squared clamp, Plummer),
-// with the bounce, wrap or no boundary: all kinds but MutualAttraction and
-// CustomForce, which step body by body as before (unsupported() says why).
+// What they run: semi-implicit Euler, the simultaneous update order, every
+// field kind with a per-body law (an Attractor with the inverse-square laws:
+// the book clamp, the squared clamp, Plummer), the bounce, wrap or no
+// boundary: all kinds but MutualAttraction and CustomForce, which step body
+// by body as before (unsupported() says why).
 //
-// How: the fields are compiled once per batch into a list of ops (plan.cpp:
-// one op per enabled field). The bodies are cut into tiles of kTile; one
-// thread copies a tile's columns into an L1-resident chunk (in the batch's
-// precision) and advances it through the whole batch of steps
-// (World::kBatchSteps): each step is one pass over the chunk per op, the
-// last op's pass fused with the update and the boundary, each pass a loop
-// over vectors of bodies (AVX-512, AVX2 + FMA or SSE2, as calder::nbody's
-// kernels; details in src/bulk/kernels_impl.hpp). Bodies don't interact,
-// so no order between tiles matters: results are bit-identical for any
-// number of threads, and there is no broad phase to pay for.
-//
-// Arithmetic (WorldDef::arithmetic):
-//   book     the same operations in the same order as the plain loops (no
-//            fused multiply-adds: that file is compiled with
-//            -ffp-contract=off), so the same bits: p5.js sketches still
-//            reproduce their references exactly;
-//   float64  a / m as a * (1 / m), (g m) / m as g, drag as -c |v| v / m, fused
-//            multiply-adds;
-//   float32  the float64 formulas in float, state rounded to float for the
-//            batch. Errors against book: docs/PERFORMANCE.md.
+// How: each tile of kTile bodies stays in the L1 cache through a whole
+// batch of World::kBatchSteps steps, a vector of bodies at a time; results
+// are bit-identical for any number of threads (docs/DESIGN.md). With
+// Arithmetic::book the bits are the plain loops' (p5.js sketches still
+// reproduce their references exactly); float64 and float32 are the fast
+// forms of the same physics (errors: docs/PERFORMANCE.md).
 #pragma once
 
 #include <cstddef>

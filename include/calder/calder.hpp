@@ -1,6 +1,10 @@
 // SPDX-License-Identifier: MIT
 // calder: forces in 2D, after chapter 2 of The Nature of Code.
-// One include for everything public.
+// One include for the core, everything a book-style program or a sketch
+// uses: vectors, worlds and movers, force laws, fields, randomness,
+// diagnostics, real time, trajectories and built-in scenes. Snapshots
+// (calder/snapshot.hpp) and the components (calder/sketch.hpp, render.hpp,
+// scene_file.hpp, nbody.hpp, bulk.hpp, gpu.hpp) have their own headers.
 #pragma once
 
 #include "calder/detmath.hpp"

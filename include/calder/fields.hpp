@@ -11,7 +11,7 @@
 // Fields act in the order they were added, each one body at a time, and each
 // force is divided by the body's mass and added to its acceleration as
 // apply_force does. Each kind of field is one header of calder/field_kinds/:
-// its struct, its description (FieldKind) and its law.
+// its struct and its description (FieldKind).
 #pragma once
 
 #include <cstddef>

@@ -3,7 +3,7 @@
 //
 // Book-style code calls them directly; the fields of calder/fields.hpp apply
 // the same laws to all bodies of a world each step. Each law is written once,
-// with its field kind (calder/field_kinds/), and these functions run it for
+// with its field kind (src/field_kinds/), and these functions run it for
 // one body:
 //
 //   mover.apply_force(calder::friction(mover.velocity(), 0.1));

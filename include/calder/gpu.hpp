@@ -10,18 +10,11 @@
 //   rain.step(1000);                            // no transfer but the fields' parameters
 //   rain.read(world);                           // back to the host, when wanted
 //
-// Sums: one target per invocation, its sources read through tiles in shared
-// memory, each target's sum in source order: no atomics, so the same device
-// gives the same bits run after run. Float32 (positions as two floats
-// relative to the bodies' centre, as calder::nbody's float32 path) or float64
-// (where the device has shaderFloat64; square roots and quotients from a
-// float estimate refined by Newton steps in double, since Vulkan asks no more
-// than float's precision of a double square root or divide).
-//
-// Steps: calder::bulk's fast arithmetics (Arithmetic::float32, float64) of
-// the same fields, one body per invocation kept in registers through a batch
-// of up to World::kBatchSteps steps. The book arithmetic (p5.js's bits) is
-// the CPU's: a device's divide and square root are not correctly rounded.
+// Sums run in source order with no atomics: the same device gives the same
+// bits run after run; float64 needs shaderFloat64. Steps run calder::bulk's
+// fast arithmetics (Arithmetic::float32, float64) of the same fields; the
+// book arithmetic (p5.js's bits) is the CPU's: a device's divide and square
+// root are not correctly rounded (docs/DESIGN.md, "The GPU").
 //
 // Errors: a device that is asked for and missing, a world the kernels can't
 // run, bad arrays: calder::InvalidArgument with one line; a Vulkan call that

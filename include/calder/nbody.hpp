@@ -17,21 +17,14 @@
 // (no direction), as calder::attraction does; with Plummer softening eps > 0
 // that force is zero anyway.
 //
-// Three ways to sum:
-//   - reference_accelerations: plain double loops, the specification;
-//   - direct_accelerations: the same O(n^2) sum, vectorised (AVX-512, AVX2 +
-//     FMA or SSE2, chosen at run time among those compiled in) and threaded
-//     (OpenMP), in float64 or float32;
-//   - barnes_hut_accelerations / BarnesHut: O(n log n), approximate, on a
-//     quadtree.
+// Three ways to sum: reference_accelerations (plain double loops, the
+// specification), direct_accelerations (the same O(n^2) sum, vectorised and
+// threaded, float64 or float32) and BarnesHut (O(n log n), approximate).
 //
-// Determinism: each body's sum runs over its sources in a fixed order that
-// does not depend on the thread count, so results are bit-identical for any
-// number of threads. They differ in the last bits between kernel instruction
-// sets (kernel_name()) and from the reference (fused multiply-adds, pairs
-// taken once for both bodies, reciprocal square root estimates refined by
-// Newton steps or a series): these kernels are for physics, not for
-// reproducing p5.js sketches bit for bit, which is the core's job.
+// Results are bit-identical for any number of threads. They differ in the
+// last bits between instruction sets (kernel_name()) and from the reference:
+// these kernels are for physics; reproducing p5.js bit for bit is the core's
+// job (docs/DESIGN.md, "Fast paths beside the book path").
 //
 // Bad input (arrays of different sizes, a non-finite position, a mass that is
 // not finite and > 0, a bad option) throws calder::Error and leaves ax, ay
@@ -52,15 +45,9 @@
 namespace calder::nbody {
 
 enum class Precision {
-  // Pair sums in float32: positions relative to the centre of the bodies'
-  // bounding box as two floats (hi + lo, so that close pairs in a wide
-  // system keep their separation to float's precision), lengths and masses
-  // scaled by powers of two into float's range; each body's sum accumulated
-  // in float over tiles of 512 sources and in double across tiles. Relative
-  // error of an acceleration against the float64 sum, measured on disks and
-  // clumps of 10^3 to 1.6 10^4 bodies: RMS 6e-8 to 9e-7, maximum < 6e-5 (at
-  // bodies whose acceleration is a small sum of large, cancelling pulls).
-  // Barnes-Hut in float32: plain floats relative to each group's centre.
+  // Pair sums in float32, positions relative to the bodies' centre as two
+  // floats: relative error against float64 RMS 6e-8 to 9e-7, max < 6e-5
+  // (disks and clumps of 10^3 to 1.6 10^4 bodies).
   float32,
   // Pair sums in double: relative error ~1e-15 (RMS) against the reference.
   float64,
@@ -83,15 +70,10 @@ struct Options {
 };
 
 // The work each thread of one parallel region did, in the region's unit
-// (pairs, interactions, bodies, keys, nodes). Work is handed to threads by
-// rules that depend on the thread count alone (static slices, fixed cyclic or
-// greedy assignments), never on timing, so these counts are the same on any
-// machine: a 2-core machine running 16 threads sees the balance of a 16-core
-// run. Where threads claim work as they go (Barnes-Hut's walk, whose
-// threads done with their share take unstarted chunks of the others'; the
-// direct pair-once sum's tasks, taken in their fixed order by whichever
-// thread is free), no bit changes and the work still counts for the share it
-// belongs to: a fast core does more than its share, the counts stay the same.
+// (pairs, interactions, bodies, keys, nodes), counted by the share it
+// belongs to: work goes to threads by rules of the thread count alone, so
+// a 2-core machine running 16 threads sees the balance of a 16-core run
+// (docs/DESIGN.md, "Fast paths beside the book path").
 struct ThreadWork {
   const char* region = "";
   const char* unit = "";
@@ -133,33 +115,21 @@ Vec2 reference_acceleration(std::span<const double> x, std::span<const double> y
 // --- Barnes-Hut -----------------------------------------------------------------
 
 struct BarnesHutOptions : Options {
-  // Opening angle: a node of side s whose centre of mass lies at distance d
-  // from a group of bodies (d measured from the group's bounding box) acts on
-  // all of them through its multipole expansion when s / (d - delta) < theta,
-  // delta being the distance from the node's centre of mass to its cell's
-  // centre (Barnes' modified criterion: a node holding a target is always
-  // opened). Smaller is more accurate and slower; 0 is the direct sum. In
-  // [0, 1]. RMS relative error at the default, 0.7, measured on uniform
-  // disks (softening half the mean spacing, 1000 bodies sampled): 5.5e-4
-  // (N = 2000), 6.6e-4 (10^4), 6.6e-4 (10^5), 6.4e-4 (10^6), 8.5e-4
-  // (2 x 10^6); at 0.75 7.1e-4, 7.9e-4, 1.0e-3 (10^4 to 10^6); at 0.6
-  // 1.8e-4, 1.1e-4, 1.8e-4. Float64 with target_block 16 (AVX2's default)
-  // at 0.7: 5.9e-4, 7.7e-4, 7.2e-4, 6.9e-4, 9.2e-4 (2000 to 2 x 10^6).
-  // Clumps: 1.1e-4 at 0.7 (10^4). With multipoles
-  // to fourth order it falls about as theta^5. The bodies of weak pull (near
-  // a disk's centre) carry most of it.
-  // The clamped laws sum monopoles only: their error at 0.7 is about 1e-2
-  // (4e-3 at 0.45, 2e-3 at 0.3; N = 20,000 disk).
+  // Opening angle, in [0, 1]: a node of side s whose centre of mass lies at
+  // distance d from a group of bodies (from the group's bounding box) acts
+  // on all of them through its multipole expansion when s / (d - delta) <
+  // theta, delta the distance from the centre of mass to the cell's centre
+  // (Barnes' modified criterion). Smaller is more accurate and slower; 0 is
+  // the direct sum. RMS relative error at the default, 0.7: about 6.6e-4 on
+  // uniform disks of 2000 to 10^6 bodies, falling about as theta^5; the
+  // clamped laws (monopoles only) about 1e-2 (docs/PERFORMANCE.md).
   double theta = kDefaultTheta;
   int leaf_size = 32;    // a node with at most this many bodies is not split
   int group_size = 128;  // bodies of a node with at most this many share one tree walk
-  // Float64, Plummer law: a group's walk opens every leaf near any of its
-  // bodies; each run of this many of its targets (in Morton order, a compact
-  // patch) then takes as multipoles those leaves that its own box accepts.
-  // Fewer pairs, a little more error (N = 10^6 disk: RMS 6.4e-4 -> 6.9e-4).
-  // -1: the kernels' choice, kernel_target_block() (16 with AVX2, where the
-  // saved pairs outweigh the extra tests; 0 with AVX-512, where they do not);
-  // 0: never. Float32 and the clamped laws ignore it.
+  // Float64, Plummer law: each run of this many of a group's targets takes
+  // as multipoles the opened leaves its own box accepts (fewer pairs, a
+  // little more error). -1: kernel_target_block(); 0: never. Float32 and
+  // the clamped laws ignore it.
   int target_block = -1;
 };
 
@@ -186,31 +156,13 @@ struct BarnesHutStats {
   std::vector<ThreadWork> work;
 };
 
-// A Barnes-Hut solver that keeps its tree and buffers between calls (the
-// allocation-free way to evaluate accelerations every step: once they have
-// grown to the bodies' size, a call on one thread allocates nothing; on
-// several, a thread's walk lists may still grow when the threads share the
-// walk out differently). It holds about 180 bytes a body.
-//
-// Build: bounding square; Morton codes (2 x 24 bits); a radix sort down to
-// the leaves (leaves in Morton order, a leaf's bodies in index order: one
-// order, whatever the number of threads that split the work); a quadtree of
-// that order, each node the smallest cell holding its bodies, split until it
-// has at most leaf_size bodies (or all share one code: coincident bodies);
-// per node mass, centre of mass and second to fourth moments. Walk: for
-// each group of <= group_size bodies (groups that share a parent walk the
-// tree once, together), the accepted nodes and the bodies of opened leaves;
-// the kernels sum the nodes' multipole expansions to fourth order (Plummer
-// law; monopoles for the clamped laws, which are not harmonic) and the
-// bodies' direct pulls for the whole group, float32 lists relative to the
-// group's centre. Nodes far from a group (beyond 2.8 / theta of its half
-// sides) are summed at 4 x 4 points of its square and interpolated: an
-// error below the expansion's at any theta. The build runs
-// in one parallel region; the walk hands each thread a run of groups of
-// equal cost (the interactions the solver's last call measured for those
-// bodies; by bodies on a first call). Each body's sum is computed by one
-// thread in a fixed order, so results do not depend on the thread count.
-// One solver serves one caller at a time.
+// A Barnes-Hut solver that keeps its tree and buffers between calls: once
+// they have grown to the bodies' size, a call on one thread allocates
+// nothing (about 180 bytes a body). The tree is a quadtree in Morton order,
+// each node the smallest cell of its bodies, split while it has more than
+// leaf_size; nodes act through multipole expansions to fourth order (Plummer
+// law; monopoles for the clamped laws); each group of <= group_size bodies
+// walks it once (docs/DESIGN.md). One solver serves one caller at a time.
 class BarnesHut {
  public:
   BarnesHut();

@@ -24,15 +24,10 @@
 //
 //   int main(int argc, char** argv) { return calder::run_sketch<Forces>(argc, argv); }
 //
-// The runner (run_sketch) calls setup() once, then draw() once a frame. With
-// a display it opens a window at the sketch's frame rate (60 a second unless
-// frame_rate() says otherwise), HiDPI aware; headless (no display, or any of
-// --gif, --png, --trajectory, --headless) it draws --frames frames as fast as
-// it can. Every sketch understands the flags of `calder render`:
-//   --frames N  --gif FILE  --png DIR  --scale S  --fps F  --every K
-//   --mouse-pressed A-B (frames A to B, repeatable)  --mouse X,Y  --seed S
-// and --trajectory FILE (the world given to record() as CSV, "-" for
-// stdout), --window, --headless, --exit-after-seconds S, --help (docs/SKETCH.md).
+// The runner (run_sketch) calls setup() once, then draw() once a frame: in a
+// window at the sketch's frame rate, or headless (no display, or --gif,
+// --png, --trajectory, --headless) as fast as it can. Every sketch takes
+// the flags of `calder render` and --trajectory (docs/SKETCH.md).
 //
 // Drawing goes through calder::Canvas's shapes (calder/render.hpp): a circle
 // a sketch draws and a body `calder render` draws are the same pixels.

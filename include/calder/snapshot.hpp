@@ -14,11 +14,9 @@
 //   calder::save_snapshot(simulation, "run.snap");
 //   calder::Simulation resumed = calder::load_simulation("run.snap");
 //
-// The format (docs/SNAPSHOTS.md) is little-endian on every platform, has a
-// version and a CRC-32 per section, and is read without calder by a few lines
-// of numpy (python/calder/snapshot_reader.py). A file that is truncated,
-// corrupted, of another version or not a snapshot is refused with an
-// InputError whose one line names the file and what is wrong.
+// The format is docs/SNAPSHOTS.md's (numpy reads it without calder). A file
+// that is truncated, corrupted, of another version or not a snapshot is
+// refused with an InputError whose one line names the file and what is wrong.
 //
 // A world holding C++ code (a CustomForce field, an AttractionLaw with a
 // custom function) can't be saved: save throws calder::Error naming the field.
@@ -33,11 +31,14 @@
 #include <string>
 #include <vector>
 
-#include "calder/output.hpp"
 #include "calder/scene.hpp"
 #include "calder/world.hpp"
 
 namespace calder {
+
+namespace output {
+class AppendFile;  // the output policy's appendable file (src/output/)
+}  // namespace output
 
 // The newest format version; every version from 1 to it is read. A snapshot
 // is written as version 1 unless it holds an adaptive integrator's state
@@ -102,7 +103,7 @@ void save_snapshot(const World& world, const std::string& path);
 // appends an index of the records; without one (a killed run), the reader
 // rebuilds it by reading the records' headers only.
 //
-// A writer goes through the output policy (calder/output.hpp, AppendFile):
+// A writer goes through the output policy (apps/README.md, "Output files"):
 // it holds an exclusive lock on the file while it lives (a second writer is
 // refused), creates a new archive or appends to an existing one after its
 // last complete snapshot, and refuses a file that is not an archive. Nothing

@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "../claims.hpp"
-#include "calder/step_batch.hpp"
+#include "../step_batch.hpp"
 #include "plan.hpp"
 
 #if defined(_OPENMP)

@@ -3,7 +3,7 @@
 // precision R and the arithmetic: kBook = true repeats the book's operations
 // in its order (World's plain loops), kBook = false is the fast form of the
 // same physics. The laws themselves are the field kinds'
-// (calder/field_kinds/), run here over vectors of bodies (KernelLanes).
+// (src/field_kinds/), run here over vectors of bodies (KernelLanes).
 //
 // Included by kernels_book.cpp (compiled with -ffp-contract=off: no fused
 // multiply-adds, so the book kernels give the plain loops' bits) and
@@ -349,9 +349,9 @@ template <class R, class V>
   return x / b.m();
 }
 
-// The kernels' lane policy (calder/field_kinds/lanes.hpp): a vector of R in
+// The kernels' lane policy (src/field_kinds/lanes.hpp): a vector of R in
 // registers, the book's arithmetic (kBook) or the fast one. The field kinds'
-// laws (calder/field_kinds/) run over Blocks through it.
+// laws (src/field_kinds/) run over Blocks through it.
 template <class Real, bool kBook>
 struct KernelLanes {
   using R = Real;
@@ -482,7 +482,7 @@ template <class R>
 }
 
 // Hands `each` the force of one op: a function of a Block that adds it to
-// the block's accelerations (its kind's law, FieldKind<F>::run).
+// the block's accelerations (its kind's law, FieldLaw<F>::run).
 template <class R, bool kBook, class Each>
 [[gnu::always_inline]] inline void apply_op(Each&& each, const Op& op, int step, R width, R height,
                                             R dt) {
@@ -499,7 +499,7 @@ template <class R, bool kBook, class Each>
 
 // The op's Gravity scaled by mass, or null.
 template <class R>
-[[gnu::always_inline]] inline const FieldKind<Gravity>::Law<R>* scaled_gravity(const Op& op) {
+[[gnu::always_inline]] inline const FieldLaw<Gravity>::Law<R>* scaled_gravity(const Op& op) {
   const auto* g = std::get_if<KindLaw<Gravity, R>>(&op.template law<R>());
   return g != nullptr && g->law.scaled ? &g->law : nullptr;
 }
@@ -733,7 +733,7 @@ void advance_step(const Plan& plan, Chunk<R>& chunk, std::size_t vectors,
         if constexpr (kBook && kFuseGravityTarget) {
           if (how.fused) {
             return last(update_one, [=](Block<R>& b) CALDER_BULK_INLINE {
-              FieldKind<Gravity>::scaled<KernelLanes<R, kBook>>(b, how.gx, how.gy);
+              FieldLaw<Gravity>::scaled<KernelLanes<R, kBook>>(b, how.gx, how.gy);
             });
           }
         }

@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: MIT
 // calder::bulk: compiles a batch's fields into passes (see plan.hpp).
 //
-// Every field kind has either a law over lanes (FieldKind<F>::law and run,
-// calder/field_kinds/), which its op runs, or a no_kernel (why the kernels
+// Every field kind has either a law over lanes (FieldLaw<F>::law and run,
+// src/field_kinds/), which its op runs, or a no_kernel (why the kernels
 // can't run it, or "" when they can after all); a kind with neither fails
 // the static_assert below, so a new kind can't be skipped silently.
 #include "plan.hpp"
@@ -21,10 +21,10 @@ namespace calder::bulk::detail {
 
 namespace {
 
-// A kind that calder::bulk may refuse says why (FieldKind<F>::no_kernel).
+// A kind that calder::bulk may refuse says why (FieldLaw<F>::no_kernel).
 template <class F>
 concept HasReason = requires(const F& f) {
-  { FieldKind<F>::no_kernel(f) } -> std::same_as<std::string>;
+  { FieldLaw<F>::no_kernel(f) } -> std::same_as<std::string>;
 };
 
 template <class... Kinds>
@@ -40,7 +40,7 @@ std::string why_not_field(const Field& field) {
       [](const auto& f) -> std::string {
         using F = std::decay_t<decltype(f)>;
         if constexpr (HasReason<F>) {
-          return FieldKind<F>::no_kernel(f);
+          return FieldLaw<F>::no_kernel(f);
         } else {
           return "";
         }
@@ -67,8 +67,8 @@ void add_op(const Field& field, Plan& plan) {
         if constexpr (HasLaw<F>) {
           if (!f.enabled) return;
           Op op;
-          op.law64 = KindLaw<F, double>{FieldKind<F>::template law<double>(f)};
-          op.law32 = KindLaw<F, float>{FieldKind<F>::template law<float>(f)};
+          op.law64 = KindLaw<F, double>{FieldLaw<F>::template law<double>(f)};
+          op.law32 = KindLaw<F, float>{FieldLaw<F>::template law<float>(f)};
           plan.ops.push_back(op);
         }
       },

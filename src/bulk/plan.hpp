@@ -12,13 +12,14 @@
 #include <variant>
 #include <vector>
 
+#include "../field_kinds/laws.hpp"
+#include "../step_batch.hpp"
 #include "calder/fields.hpp"
-#include "calder/step_batch.hpp"
 #include "calder/world.hpp"
 
 namespace calder::bulk::detail {
 
-// A field's law in the precision R of a kernel (FieldKind<F>::Law<R>, its
+// A field's law in the precision R of a kernel (FieldLaw<F>::Law<R>, its
 // parameters converted once per batch), for the kinds that have one; an
 // empty struct for the others, which compile() never makes.
 template <class F, class R>
@@ -26,7 +27,7 @@ struct KindLaw {};
 template <class F, class R>
 requires HasLaw<F>
 struct KindLaw<F, R> {
-  using Kind = FieldKind<F>;
+  using Kind = FieldLaw<F>;
   typename Kind::template Law<R> law;
 };
 

@@ -6,9 +6,9 @@
 #include <mutex>
 #include <string>
 
+#include "../step_batch.hpp"
 #include "calder/error.hpp"
 #include "calder/gpu.hpp"
-#include "calder/step_batch.hpp"
 #include "context.hpp"
 #include "steps.hpp"
 

@@ -11,9 +11,9 @@
 #include <vector>
 
 #include "../bulk/plan.hpp"
+#include "../step_batch.hpp"
 #include "calder/error.hpp"
 #include "calder/gpu.hpp"
-#include "calder/step_batch.hpp"
 #include "context.hpp"
 #include "shaders.hpp"
 #include "shaders/interface.h"
@@ -105,33 +105,33 @@ struct OpRecord {
 // --- each field kind's law as an op record (the fast arithmetic's law) ---
 
 template <class R>
-void encode(const FieldKind<Gravity>::Law<R>& law, OpRecord<R>& op) {
+void encode(const FieldLaw<Gravity>::Law<R>& law, OpRecord<R>& op) {
   op.kind = law.scaled ? ShaderOp::gravity_scaled : ShaderOp::uniform;
   op.reals[kSlotFx] = law.gx;
   op.reals[kSlotFy] = law.gy;
 }
 
 template <class R>
-void encode(const FieldKind<Wind>::Law<R>& law, OpRecord<R>& op) {
+void encode(const FieldLaw<Wind>::Law<R>& law, OpRecord<R>& op) {
   op.reals[kSlotFx] = law.fx;
   op.reals[kSlotFy] = law.fy;
 }
 
 template <class R>
-void encode(const FieldKind<Helium>::Law<R>& law, OpRecord<R>& op) {
+void encode(const FieldLaw<Helium>::Law<R>& law, OpRecord<R>& op) {
   op.reals[kSlotFx] = law.fx;
   op.reals[kSlotFy] = law.fy;
 }
 
 template <class R>
-void encode(const FieldKind<NoiseWind>::Law<R>& law, OpRecord<R>& op) {
+void encode(const FieldLaw<NoiseWind>::Law<R>& law, OpRecord<R>& op) {
   op.reals[kSlotFx] = law.fx;
   op.reals[kSlotFy] = law.fy;
   op.per_step = law.per_step;
 }
 
 template <class R>
-void encode(const FieldKind<Drag>::Law<R>& law, OpRecord<R>& op) {
+void encode(const FieldLaw<Drag>::Law<R>& law, OpRecord<R>& op) {
   constexpr R kInf = std::numeric_limits<R>::infinity();
   op.kind = ShaderOp::drag;
   op.flags = kOpEverywhere | (law.never_reverse ? kOpNeverReverse : 0);
@@ -143,7 +143,7 @@ void encode(const FieldKind<Drag>::Law<R>& law, OpRecord<R>& op) {
 }
 
 template <class R>
-void encode(const FieldKind<Liquid>::Law<R>& law, OpRecord<R>& op) {
+void encode(const FieldLaw<Liquid>::Law<R>& law, OpRecord<R>& op) {
   op.kind = ShaderOp::drag;
   op.flags = law.never_reverse ? kOpNeverReverse : 0;
   op.reals[kSlotC] = law.c;
@@ -154,7 +154,7 @@ void encode(const FieldKind<Liquid>::Law<R>& law, OpRecord<R>& op) {
 }
 
 template <class R>
-void encode(const FieldKind<Friction>::Law<R>& law, OpRecord<R>& op) {
+void encode(const FieldLaw<Friction>::Law<R>& law, OpRecord<R>& op) {
   op.kind = ShaderOp::friction;
   op.flags = law.never_reverse ? kOpNeverReverse : 0;
   op.which = edge_index(law.surface);
@@ -166,7 +166,7 @@ void encode(const FieldKind<Friction>::Law<R>& law, OpRecord<R>& op) {
 // The fast form: G M w r, w = 1 / (d_c^2 d), 1 / (q d) or 1 / s^3 (G M in
 // double, then rounded, as the CPU's kernels take it).
 template <class R>
-void encode(const FieldKind<Attractor>::Law<R>& law, OpRecord<R>& op) {
+void encode(const FieldLaw<Attractor>::Law<R>& law, OpRecord<R>& op) {
   op.kind = ShaderOp::attractor;
   op.which = shader_law(law.clamp);
   op.reals[kSlotPx] = law.px;
@@ -178,14 +178,14 @@ void encode(const FieldKind<Attractor>::Law<R>& law, OpRecord<R>& op) {
 }
 
 template <class R>
-void encode(const FieldKind<EdgeForce>::Law<R>& law, OpRecord<R>& op) {
+void encode(const FieldLaw<EdgeForce>::Law<R>& law, OpRecord<R>& op) {
   op.kind = ShaderOp::edge_force;
   op.reals[kSlotC] = law.strength;
   op.reals[kSlotReach] = law.margin;
 }
 
 template <class R>
-void encode(const FieldKind<Fan>::Law<R>& law, OpRecord<R>& op) {
+void encode(const FieldLaw<Fan>::Law<R>& law, OpRecord<R>& op) {
   op.kind = ShaderOp::fan;
   op.reals[kSlotPx] = law.px;
   op.reals[kSlotPy] = law.py;
@@ -194,15 +194,15 @@ void encode(const FieldKind<Fan>::Law<R>& law, OpRecord<R>& op) {
 }
 
 template <class R>
-void encode(const FieldKind<Lift>::Law<R>& law, OpRecord<R>& op) {
+void encode(const FieldLaw<Lift>::Law<R>& law, OpRecord<R>& op) {
   op.kind = ShaderOp::lift;
   op.reals[kSlotC] = law.coefficient;
 }
 
 // Every kind with a law has an encode: a new kind can't be skipped silently.
 template <class F>
-concept Encoded = requires(const typename FieldKind<F>::template Law<float>& f32,
-                           const typename FieldKind<F>::template Law<double>& f64,
+concept Encoded = requires(const typename FieldLaw<F>::template Law<float>& f32,
+                           const typename FieldLaw<F>::template Law<double>& f64,
                            OpRecord<float>& op32, OpRecord<double>& op64) {
   encode(f32, op32);
   encode(f64, op64);

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 // calder output module: a regular file appended to under an exclusive lock,
-// put back as it was unless kept (calder/output.hpp, AppendFile).
+// put back as it was unless kept (output.hpp, AppendFile).
 #include <fcntl.h>
 #include <sys/file.h>
 #include <sys/stat.h>
@@ -11,7 +11,7 @@
 #include <utility>
 
 #include "calder/error.hpp"
-#include "calder/output.hpp"
+#include "output.hpp"
 #include "policy.hpp"
 
 namespace calder::output {

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 // calder output module: a file that appears whole or not at all
-// (calder/output.hpp, AtomicFile).
+// (output.hpp, AtomicFile).
 #include <fcntl.h>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "calder/error.hpp"
-#include "calder/output.hpp"
+#include "output.hpp"
 #include "policy.hpp"
 
 namespace calder::output {

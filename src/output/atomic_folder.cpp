@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 // calder output module: a folder of files replaced as a whole
-// (calder/output.hpp, AtomicFolder).
+// (output.hpp, AtomicFolder).
 #include <dirent.h>
 #include <fcntl.h>
 #include <stdio.h>
@@ -15,7 +15,7 @@
 #include <utility>
 
 #include "calder/error.hpp"
-#include "calder/output.hpp"
+#include "output.hpp"
 
 namespace calder::output {
 

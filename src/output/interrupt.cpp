@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 // calder output module: the registry of temporaries and the one handler of
-// terminating signals (calder/output.hpp, InterruptScope).
+// terminating signals (output.hpp, InterruptScope).
 #include <semaphore.h>
 #include <signal.h>
 #include <unistd.h>
@@ -16,7 +16,7 @@
 #include <utility>
 #include <vector>
 
-#include "calder/output.hpp"
+#include "output.hpp"
 
 namespace calder::output {
 

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// calder output module: the output policy (calder/output.hpp), for one path
+// calder output module: the output policy (output.hpp), for one path
 // (probe) and for all the outputs of a run (check_outputs).
 #include "policy.hpp"
 
@@ -14,7 +14,7 @@
 #include <vector>
 
 #include "calder/error.hpp"
-#include "calder/output.hpp"
+#include "output.hpp"
 
 #ifndef O_PATH  // (a system without it: a read-only open finds the folder as well)
 #define O_PATH O_RDONLY

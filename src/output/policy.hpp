@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 // calder output module, inside: what the policy decides for one path
-// (calder/output.hpp), shared by the writers and check_outputs.
+// (src/output/output.hpp), shared by the writers and check_outputs.
 #pragma once
 
 #include <sys/stat.h>

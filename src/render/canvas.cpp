@@ -17,10 +17,10 @@
 #include <variant>
 #include <vector>
 
+#include "../output/output.hpp"
 #include "calder/diagnostics.hpp"
 #include "calder/error.hpp"
 #include "calder/fields.hpp"
-#include "calder/output.hpp"
 #include "calder/render.hpp"
 
 namespace calder {

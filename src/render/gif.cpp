@@ -15,8 +15,8 @@
 #include <utility>
 #include <vector>
 
+#include "../output/output.hpp"
 #include "calder/error.hpp"
-#include "calder/output.hpp"
 #include "calder/render.hpp"
 #include "quantize.hpp"
 

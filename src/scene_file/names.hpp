@@ -21,15 +21,6 @@ struct Choice {
   E value;
 };
 
-inline constexpr std::array<Choice<Integrator>, 6> kIntegrators{{
-    {"semi_implicit_euler", Integrator::semi_implicit_euler},
-    {"velocity_verlet", Integrator::velocity_verlet},
-    {"rk4", Integrator::rk4},
-    {"ias15", Integrator::ias15},
-    {"yoshida4", Integrator::yoshida4},
-    {"yoshida6", Integrator::yoshida6},
-}};
-
 inline constexpr std::array<Choice<UpdateOrder>, 2> kUpdateOrders{{
     {"simultaneous", UpdateOrder::simultaneous},
     {"sequential", UpdateOrder::sequential},
@@ -73,6 +64,7 @@ constexpr std::array<Choice<E>, N> choices_of(const std::array<Name, N>& names) 
   return out;
 }
 
+inline constexpr auto kIntegrators = choices_of<Integrator>(kIntegratorNames);
 inline constexpr auto kClamps = choices_of<DistanceClamp>(kDistanceClampNames);
 
 inline constexpr std::array<Choice<MassProduct>, 2> kProducts{{

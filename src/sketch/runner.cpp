@@ -13,8 +13,8 @@
 #include <string>
 #include <system_error>
 
+#include "../output/output.hpp"
 #include "calder/error.hpp"
-#include "calder/output.hpp"
 
 namespace calder {
 

@@ -11,7 +11,7 @@
 #include <sstream>
 #include <string>
 
-#include "calder/output.hpp"
+#include "../output/output.hpp"
 #include "calder/render.hpp"
 #include "calder/sketch.hpp"
 #include "calder/trajectory.hpp"

@@ -23,9 +23,9 @@
 #include <utility>
 #include <vector>
 
+#include "../../src/output/output.hpp"
 #include "calder/calder.hpp"
 #include "calder/nbody.hpp"
-#include "calder/output.hpp"
 #include "cli.hpp"
 #include "errors.hpp"
 #include "output_file.hpp"

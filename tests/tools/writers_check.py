@@ -2,7 +2,7 @@
 # SPDX-License-Identifier: MIT
 """Every place in calder's code that opens a file for writing is in the
 output module (src/output/): a writer anywhere else goes around the output
-policy (calder/output.hpp).
+policy (src/output/output.hpp).
 
     writers_check.py REPO_ROOT        lists what it finds; exit 1 on one outside
 
@@ -129,7 +129,7 @@ def main() -> int:
                 outside += 0 if inside or allowed else 1
     if outside:
         print(f"writers_check: {outside} place(s) open files for writing outside {MODULE}: "
-              "write through calder/output.hpp")
+              "write through src/output/output.hpp")
     return 1 if outside else 0
 
 

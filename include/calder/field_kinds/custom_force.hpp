@@ -28,7 +28,6 @@ struct FieldKind<CustomForce> {
   static constexpr bool in_scene_files = false;
   // The force function is not empty.
   static void check(const CustomForce& field, const std::string& where);
-  static std::string no_kernel(const CustomForce&) { return "field custom_force has no kernel"; }
 };
 
 }  // namespace calder

@@ -1,10 +1,9 @@
 // SPDX-License-Identifier: MIT
 // calder: what a field kind is made of. Each kind is one header in this
-// folder: its struct (the parameters a sketch sets), its FieldKind<F>
+// folder: its struct (the parameters a sketch sets) and its FieldKind<F>
 // description (name, parameters and their ranges, for validation, scene
-// files, bindings and docs) and its law, written once over lanes
-// (field_kinds/lanes.hpp) for the World's plain loops and calder::bulk's
-// kernels alike. calder/fields.hpp gathers them into the Field variant.
+// files, bindings and docs). calder/fields.hpp gathers them into the Field
+// variant. How a kind acts, its law, is calder's own (src/field_kinds/).
 #pragma once
 
 #include <cstddef>
@@ -14,7 +13,6 @@
 
 #include "calder/backends.hpp"
 #include "calder/body_columns.hpp"
-#include "calder/field_kinds/lanes.hpp"
 #include "calder/vec2.hpp"
 
 namespace calder {
@@ -98,20 +96,6 @@ struct Parameter {
 //   static constexpr bool in_scene_files = false;  // C++ code, no scene-file form
 //   static constexpr auto position = &F::position; // it can follow the mouse
 //   static void check(const F&, const std::string& where);  // rules across parameters
-//
-// and, for a kind that acts on each body on its own, its law over lanes:
-//
-//   template <class R> struct Law;                 // its parameters in precision R
-//   template <class R> static Law<R> law(const F&);
-//   // Hands each(op) the function op(b) that adds the field's acceleration
-//   // to body lane b (one kind of op per compile-time case of the law).
-//   template <class P, class Each>
-//   static void run(Each&& each, const Law<typename P::R>&, const lanes::Frame<typename P::R>&);
-//   // Why calder::bulk can't run this field ("" when it can), if it may not.
-//   static std::string no_kernel(const F&);
-//
-// A kind without a law (mutual attraction, custom force) has its own branch
-// in accumulate (src/fields.cpp) and a no_kernel.
 template <class F>
 struct FieldKind;
 
@@ -126,11 +110,5 @@ constexpr bool differs(const decltype(field_kind_detail::owner_of(member))& fiel
   using F = decltype(field_kind_detail::owner_of(member));
   return !(field.*member == F{}.*member);
 }
-
-// Whether the kind has a law over lanes (FieldKind::law, FieldKind::run).
-template <class F>
-concept HasLaw = requires(const F& f) {
-  FieldKind<F>::template law<double>(f);
-};
 
 }  // namespace calder

@@ -1,8 +1,7 @@
 // SPDX-License-Identifier: MIT
 // The field kind MutualAttraction: every body attracts every other (the
 // n-body problem), pair by pair under calder::attraction, or by calder::nbody's
-// kernels (NBodyMethod). It has no per-body law: accumulate (src/fields.cpp)
-// sums its pairs.
+// kernels (NBodyMethod).
 #pragma once
 
 #include <array>
@@ -103,9 +102,6 @@ struct FieldKind<MutualAttraction> {
   };
   // The fast methods support the inverse-square law only.
   static void check(const MutualAttraction& field, const std::string& where);
-  static std::string no_kernel(const MutualAttraction&) {
-    return "field mutual_attraction has no per-body kernel (calder::nbody sums it)";
-  }
 };
 
 }  // namespace calder

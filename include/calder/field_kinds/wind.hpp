@@ -16,19 +16,6 @@ struct FieldKind<Wind> {
   static constexpr const char* name = "wind";
   static constexpr const char* summary = "The same force on every body.";
   static constexpr auto parameters = std::tuple{Parameter<Wind, Vec2>{"force", &Wind::force}};
-
-  template <class R>
-  struct Law {
-    R fx, fy;
-  };
-  template <class R>
-  static Law<R> law(const Wind& f) {
-    return {R(f.force.x), R(f.force.y)};
-  }
-  template <class P, class Each>
-  static void run(Each&& each, const Law<typename P::R>& p, const lanes::Frame<typename P::R>&) {
-    each([=](auto& b) CALDER_LANE_INLINE { lanes::add_uniform<P>(b, p.fx, p.fy); });
-  }
 };
 
 }  // namespace calder

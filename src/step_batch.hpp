@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
-// calder: what World::step hands a StepBatchBackend (calder/backends.hpp):
-// for writers of whole-world kernels (calder::bulk).
+// calder internals: what World::step hands a StepBatchBackend
+// (calder/backends.hpp): the batch the kernels of calder::bulk and
+// calder::gpu step.
 #pragma once
 
 #include <cstddef>

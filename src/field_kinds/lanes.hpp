@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
-// calder: the vocabulary the field kinds' laws are written in, once for the
-// World's plain loops and calder::bulk's kernels.
+// calder internals: the vocabulary the field kinds' laws (src/field_kinds/)
+// are written in, once for the World's plain loops and the kernels of
+// calder::bulk.
 //
 // A law is a template over a lane policy P that says what one lane is and
 // how its arithmetic goes:
