@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "calder/error.hpp"
+#include "calder/scene.hpp"
 #include "calder/world.hpp"
 
 namespace calder {
@@ -259,11 +260,26 @@ EnergyWatch::EnergyWatch(const World& world, double threshold, double start_ener
   active_ = std::isfinite(start_);
 }
 
+double relative_energy_error(double start, double now) {
+  const double change = std::fabs(now - start);
+  return start != 0.0 ? change / std::fabs(start) : change;
+}
+
+double start_energy(const Simulation& simulation) {
+  try {
+    if (!energy_watchable(simulation.world())) return std::numeric_limits<double>::quiet_NaN();
+    if (simulation.frame() == 0) return total_energy(simulation.world());
+    const Simulation start(simulation.scene());
+    return total_energy(start.world());
+  } catch (const Error&) {
+    return std::numeric_limits<double>::quiet_NaN();  // no known potential
+  }
+}
+
 bool EnergyWatch::observe(const World& world, std::int64_t frame) {
   if (!active_) return false;
   last_energy_ = total_energy(world);
-  const double change = std::fabs(last_energy_ - start_);
-  last_ = start_ != 0.0 ? change / std::fabs(start_) : change;
+  last_ = relative_energy_error(start_, last_energy_);
   if (!(last_ <= worst_)) worst_ = last_;  // a NaN is the worst
   if (first_over_ >= 0 || !(last_ > threshold_ || std::isnan(last_))) return false;
   first_over_ = frame;

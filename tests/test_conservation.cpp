@@ -25,6 +25,7 @@
 #include "calder/fields.hpp"
 #include "calder/forces.hpp"
 #include "calder/random.hpp"
+#include "calder/scene.hpp"
 #include "calder/vec2.hpp"
 #include "calder/world.hpp"
 #include "support/test_support.hpp"
@@ -351,6 +352,28 @@ World make_world(std::uint32_t seed) {
         {.position = {x, y}, .velocity = Vec2::random2d(rng), .mass = m, .radius = m * 8.0});
   }
   return world;
+}
+
+// The error a run reports is measured from its scene's first frame, also
+// when the run was resumed part-way (the start is built again, same bits).
+TEST(ConservationEnergy, ARunsStartEnergyIsItsFirstFramesEvenWhenResumed) {
+  calder::Simulation run(calder::builtin_scene("figure-eight"));
+  const double first = calder::total_energy(run.world());
+  EXPECT_EQ(calder::start_energy(run), first);
+  for (int k = 0; k < 50; ++k) run.step();
+  ASSERT_EQ(run.frame(), 50);  // start_energy builds the start again
+  EXPECT_EQ(calder::start_energy(run), first);
+  // The book's wind and bounces change the energy on purpose: nothing to measure.
+  EXPECT_TRUE(
+      std::isnan(calder::start_energy(calder::Simulation(calder::builtin_scene("example-2.1")))));
+}
+
+TEST(ConservationEnergy, RelativeErrorIsTheChangeOverTheStart) {
+  EXPECT_EQ(calder::relative_energy_error(10.0, 9.0), 0.1);
+  EXPECT_EQ(calder::relative_energy_error(-4.0, -3.0), 0.25);
+  EXPECT_EQ(calder::relative_energy_error(-4.0, -4.0), 0.0);
+  EXPECT_EQ(calder::relative_energy_error(0.0, 2.0), 2.0);  // no scale: the change itself
+  EXPECT_TRUE(std::isnan(calder::relative_energy_error(1.0, std::nan(""))));
 }
 
 TEST(ConservationDeterminism, SameSeedSameHash) {

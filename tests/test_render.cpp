@@ -398,6 +398,25 @@ TEST(RenderOverlays, VelocityAndHudAreDrawnWhenAsked) {
   EXPECT_GT(dark_pixels(canvas), 20);
 }
 
+TEST(RenderOverlays, TheHudShowsTheEnergyErrorSinceTheStartWhileItIsExact) {
+  World world({.width = 640, .height = 240});
+  world.add_body({.position = {100, 100}, .velocity = {3, 0}, .mass = 2.0});  // kinetic 9
+  RenderStyle style;
+  style.show_hud = true;
+  EXPECT_EQ(calder::hud_text(world, style, 7), "frame 7   bodies 1   energy 9");
+  style.hud_start_energy = 10.0;
+  EXPECT_EQ(calder::hud_text(world, style, 7), "frame 7   bodies 1   energy 9   error 0.1");
+  // A sampled potential (past kHudEnergyPairs pairs) shows no error: '~' and the estimate.
+  World many({.width = 640, .height = 240});
+  many.add(calder::MutualAttraction{});
+  for (int i = 0; i < 1000; ++i) {
+    many.add_body({.position = {static_cast<double>(i % 640), static_cast<double>(i / 640 * 10)}});
+  }
+  const std::string sampled = calder::hud_text(many, style, 1);
+  EXPECT_NE(sampled.find("energy ~"), std::string::npos) << sampled;
+  EXPECT_EQ(sampled.find("error"), std::string::npos) << sampled;
+}
+
 TEST(RenderOverlays, AThrowingCustomForceLeavesTheCanvasUsable) {
   World world({.width = 640, .height = 240});
   world.add_body({.position = {100, 100}, .mass = 1.0, .radius = 10});

@@ -76,7 +76,9 @@ void add_style_options(CLI::App& command, StyleOptions& options) {
   command.add_flag("--forces", options.forces,
                    "Draw each field's force on each body, the net force and a legend");
   command.add_flag("--velocity", options.velocity, "Draw each body's velocity");
-  command.add_flag("--hud", options.hud, "Show the frame, the body count and the total energy");
+  command.add_flag(
+      "--hud", options.hud,
+      "Show the frame, the body count, the total energy and its relative error since the start");
   command.add_flag("--figure", options.figure,
                    "The look of the book's printed figures (fading trails) instead of the "
                    "sketch's");
@@ -95,6 +97,10 @@ RenderStyle make_style(const Scene& scene, const StyleOptions& options) {
     rethrow_with_context(e, scene.name + ": ");
   }
   return style;
+}
+
+void start_hud(RenderStyle& style, const Simulation& simulation) {
+  if (style.show_hud) style.hud_start_energy = start_energy(simulation);
 }
 
 double parse_scale(const std::string& flag, const std::string& text) {
@@ -293,8 +299,9 @@ void render_command(const RenderOptions& options, std::ostream& out, std::ostrea
   check_render_frames(input, options, every);
   check_render_outputs(options, input);
   const CanvasSize size = canvas_size(options.size, options.scale, input.scene);
-  const RenderStyle style = make_style(input.scene, options.style);
+  RenderStyle style = make_style(input.scene, options.style);
   Simulation simulation = start_simulation(input);
+  start_hud(style, simulation);
   check_world_work(input, simulation, render_work(simulation, style, frames, every));
 
   std::optional<Canvas> canvas;

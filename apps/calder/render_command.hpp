@@ -50,6 +50,9 @@ void add_style_options(CLI::App& command, StyleOptions& options);
 // book_style(scene) (BookLook::figure with --figure) with the flags applied.
 // Throws InputError if the style is invalid.
 RenderStyle make_style(const Scene& scene, const StyleOptions& options);
+// With --hud, the HUD's energy error measured from the run's start
+// (calder::start_energy: a resumed run's scene at its first frame).
+void start_hud(RenderStyle& style, const Simulation& simulation);
 
 // A canvas's size in canvas pixels, and its pixel density.
 struct CanvasSize {

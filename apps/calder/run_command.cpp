@@ -125,18 +125,6 @@ class EnergyMonitor {
  private:
   // Up to this many pair terms the error is measured after every frame.
   static constexpr std::uint64_t kEveryFrameTerms = 100'000;
-  // The energy at the run's first frame: a run resumed from a snapshot
-  // builds its scene's start again (the snapshot holds the scene and seed).
-  static double start_energy(const Simulation& simulation) {
-    try {
-      if (!energy_watchable(simulation.world())) return std::numeric_limits<double>::quiet_NaN();
-      if (simulation.frame() == 0) return total_energy(simulation.world());
-      const Simulation start(simulation.scene());
-      return total_energy(start.world());
-    } catch (const Error&) {
-      return std::numeric_limits<double>::quiet_NaN();  // no known potential: not measured
-    }
-  }
   // Warn unasked only about Newton's unclamped law: the book's clamped laws
   // at dt = 1 never promised to conserve energy.
   static bool newtonian(const World& world) {

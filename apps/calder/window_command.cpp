@@ -80,6 +80,7 @@ class SceneSketch : public Sketch {
         size_(canvas_size(std::nullopt, options.scale, input.scene)),
         speed_(options.speed ? parse_speed(*options.speed) : 1.0),
         scripted_(!options.input.mouse_pressed.empty() || options.input.mouse.has_value()) {
+    start_hud(style_, simulation_);
     if (options.input.frames) frame_limit_ = input.scene.frames;
     if (options.screenshot) check_output_path("--screenshot", *options.screenshot);
   }

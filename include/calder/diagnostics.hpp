@@ -11,6 +11,7 @@
 namespace calder {
 
 class World;
+class Simulation;
 
 // Sum of 1/2 m |v|^2 over all bodies.
 double kinetic_energy(const World& world);
@@ -93,6 +94,13 @@ inline constexpr std::uint64_t kEnergyWatchTerms = std::uint64_t{1} << 22;
 // Whether the watch can measure this world: it conserves energy and its exact
 // energy costs at most kEnergyWatchTerms terms.
 bool energy_watchable(const World& world);
+// |now - start| / |start|, or |now - start| when start is 0.
+double relative_energy_error(double start, double now);
+// What a run's error is measured from: the total energy of the simulation's
+// scene at its first frame (built again when the run was resumed from a
+// snapshot). NaN when the world isn't energy_watchable or a field's
+// potential isn't known.
+double start_energy(const Simulation& simulation);
 class EnergyWatch {
  public:
   // Records the energy now; inactive (measures nothing) when the world isn't

@@ -29,6 +29,7 @@
 #pragma once
 
 #include <cstdint>
+#include <limits>
 #include <memory>
 #include <string>
 #include <vector>
@@ -105,10 +106,14 @@ struct RenderStyle {
   // sum) and a legend naming the fields by colour.
   bool show_forces = false;
   bool show_velocity = false;
-  // One line of text: frame, body count, total energy (with more than
-  // kHudEnergyPairs pairs of mutual attraction, "~" and a sampled estimate:
-  // calder::displayed_energy).
+  // One line of text (hud_text): frame, body count, total energy (with more
+  // than kHudEnergyPairs pairs of mutual attraction, "~" and a sampled
+  // estimate: calder::displayed_energy) and, when hud_start_energy is
+  // finite and the energy exact, the relative energy error since then.
   bool show_hud = false;
+  // The energy the HUD's error is measured from: calder::start_energy of
+  // the run (calder render and window set it); NaN shows no error.
+  double hud_start_energy = std::numeric_limits<double>::quiet_NaN();
   double force_scale = 100.0;   // canvas pixels per unit of force (the book's gravity 0.1: 10 px)
   double velocity_scale = 5.0;  // canvas pixels per pixel-per-frame of velocity
   double vector_weight = 1.5;
@@ -297,6 +302,11 @@ class GifWriter {
 // left, so leak checkers see a clean exit; drawing text afterwards is not
 // allowed.
 void release_render_caches();
+
+// The HUD's line for frame `frame` of the world: "frame 42   bodies 3
+// energy -20506.7   error 5.02e-11" (the error only as show_hud says).
+[[nodiscard]] std::string hud_text(const World& world, const RenderStyle& style,
+                                   std::int64_t frame);
 
 // A folder of PNG frames (`calder render --png`, a sketch's `--png`): frame
 // `index` is frame-000001.png (six or more digits), and a new run replaces

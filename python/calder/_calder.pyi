@@ -653,6 +653,7 @@ class RenderStyle:
     show_forces: bool
     show_velocity: bool
     show_hud: bool
+    hud_start_energy: float
     force_scale: float
     velocity_scale: float
     def __init__(self) -> None: ...

@@ -266,6 +266,7 @@ void bind_scene_render(py::module_& m) {
       .def_readwrite("show_forces", &RenderStyle::show_forces)
       .def_readwrite("show_velocity", &RenderStyle::show_velocity)
       .def_readwrite("show_hud", &RenderStyle::show_hud)
+      .def_readwrite("hud_start_energy", &RenderStyle::hud_start_energy)
       .def_readwrite("force_scale", &RenderStyle::force_scale)
       .def_readwrite("velocity_scale", &RenderStyle::velocity_scale)
       .def("validate", &RenderStyle::validate);

@@ -539,20 +539,25 @@ void Canvas::Impl::draw_text(const World& world, const RenderStyle& style, std::
     text_box(cr, 6.0, 6.0, false, legend, true, style.text_color);
   }
   if (style.show_hud) {
-    // Bounded per frame: past kHudEnergyPairs pairs the potential is a
-    // sampled estimate, shown with a leading '~'.
-    const DisplayedEnergy e = displayed_energy(world);
-    std::string energy;
-    if (e.has_potential) {
-      energy = e.exact() ? std::string() : std::string(1, '~');
-      energy += format_short(e.total());
-    } else {
-      energy = "n/a";  // a field without a potential (a custom attraction law)
-    }
-    const std::string line = "frame " + std::to_string(frame) + "   bodies " +
-                             std::to_string(world.body_count()) + "   energy " + energy;
-    text_box(cr, 6.0, height - 6.0, true, {{line, style.text_color}}, false, style.text_color);
+    text_box(cr, 6.0, height - 6.0, true, {{hud_text(world, style, frame), style.text_color}},
+             false, style.text_color);
   }
+}
+
+std::string hud_text(const World& world, const RenderStyle& style, std::int64_t frame) {
+  // Bounded per frame: past kHudEnergyPairs pairs the potential is a
+  // sampled estimate, shown with a leading '~' and no error (a sample can't
+  // show one of 1e-6).
+  const DisplayedEnergy e = displayed_energy(world);
+  std::string line =
+      "frame " + std::to_string(frame) + "   bodies " + std::to_string(world.body_count());
+  if (!e.has_potential) return line + "   energy n/a";  // a custom attraction law
+  line +=
+      "   energy " + (e.exact() ? std::string() : std::string(1, '~')) + format_short(e.total());
+  if (e.exact() && std::isfinite(style.hud_start_energy)) {
+    line += "   error " + format_short(relative_energy_error(style.hud_start_energy, e.total()));
+  }
+  return line;
 }
 
 // --- shapes --------------------------------------------------------------------
