@@ -265,15 +265,18 @@ double relative_energy_error(double start, double now) {
   return start != 0.0 ? change / std::fabs(start) : change;
 }
 
-double start_energy(const Simulation& simulation) {
+double watched_energy(const World& world) {
   try {
-    if (!energy_watchable(simulation.world())) return std::numeric_limits<double>::quiet_NaN();
-    if (simulation.frame() == 0) return total_energy(simulation.world());
-    const Simulation start(simulation.scene());
-    return total_energy(start.world());
+    if (energy_watchable(world)) return total_energy(world);
   } catch (const Error&) {
-    return std::numeric_limits<double>::quiet_NaN();  // no known potential
+    // no known potential: not measured
   }
+  return std::numeric_limits<double>::quiet_NaN();
+}
+
+double start_energy(const Simulation& simulation) {
+  if (simulation.frame() == 0) return watched_energy(simulation.world());
+  return watched_energy(Simulation(simulation.scene()).world());
 }
 
 bool EnergyWatch::observe(const World& world, std::int64_t frame) {

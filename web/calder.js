@@ -124,9 +124,10 @@
     },
     stateHash: () => need().stateHash(),
     frame: () => need().frame(),
-    // {kinetic, potential (NaN where the fields have none), total, exact}: the
-    // HUD's energy, bounded per call (calder::displayed_energy); exact false
-    // where the potential is a sampled estimate.
+    // {kinetic, potential (NaN where the fields have none), total, exact,
+    // error}: the HUD's energy, bounded per call (calder::displayed_energy);
+    // exact false where the potential is a sampled estimate; error the
+    // relative energy error since the start, NaN where it isn't measured.
     energy: () => need().energy(),
     // Fresh zero-copy views of the bodies' arrays (Float64Array).
     bodies() {

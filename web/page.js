@@ -131,6 +131,8 @@
       $('hud-bodies').textContent = String(calder.bodies().count);
       const energy = calder.energy();  // bounded: a sampled estimate past its pairs
       $('hud-energy').textContent = (energy.exact ? '' : '~') + formatNumber(energy.total);
+      $('hud-error-box').hidden = !Number.isFinite(energy.error);
+      $('hud-error').textContent = formatNumber(energy.error);
       $('hud-hash').textContent = calder.stateHash();
     } catch (e) {
       return;

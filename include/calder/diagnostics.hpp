@@ -96,6 +96,9 @@ inline constexpr std::uint64_t kEnergyWatchTerms = std::uint64_t{1} << 22;
 bool energy_watchable(const World& world);
 // |now - start| / |start|, or |now - start| when start is 0.
 double relative_energy_error(double start, double now);
+// The world's total energy now when the watch can measure it
+// (energy_watchable, a known potential), else NaN.
+double watched_energy(const World& world);
 // What a run's error is measured from: the total energy of the simulation's
 // scene at its first frame (built again when the run was resumed from a
 // snapshot). NaN when the world isn't energy_watchable or a field's

@@ -13,6 +13,7 @@
 #include <algorithm>
 #include <calder/diagnostics.hpp>
 #include <calder/error.hpp>
+#include <calder/scene.hpp>
 #include <calder/trajectory.hpp>
 #include <calder/world.hpp>
 #include <cmath>
@@ -530,6 +531,11 @@ void bind_world(py::module_& m) {
         "summed (past them a sampled estimate)");
   m.def("conserves_energy", &conserves_energy, py::arg("world"),
         "Whether the world's fields and boundary keep its total energy constant");
+  m.def("relative_energy_error", &relative_energy_error, py::arg("start"), py::arg("now"),
+        "|now - start| / |start| (|now - start| when start is 0)");
+  m.def("start_energy", &start_energy, py::arg("simulation"),
+        "The total energy of the simulation's scene at its first frame (what its relative "
+        "error is measured from; built again for a resumed run); NaN when not measured");
   py::class_<EnergyWatch>(m, "EnergyWatch",
                           "The relative energy error of a run since its start: observe(world, "
                           "frame) after each frame returns True the first time it passes the "

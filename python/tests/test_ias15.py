@@ -1,6 +1,8 @@
 # SPDX-License-Identifier: MIT
 """ias15 from Python: the Pythagorean problem's outcome and energy, the
 energy watch on a fixed step that is too long."""
+import math
+
 import calder
 
 
@@ -38,3 +40,14 @@ def test_a_long_fixed_step_passes_the_threshold():
 def test_tolerance_is_a_world_setting():
     world = calder.World(integrator=calder.Integrator.ias15, tolerance=1e-11)
     assert world.tolerance == 1e-11
+
+
+def test_a_runs_error_is_measured_from_its_first_frame():
+    sim = calder.Simulation("figure-eight")
+    first = calder.total_energy(sim.world)
+    sim.run(50)
+    assert calder.start_energy(sim) == first
+    now = calder.total_energy(sim.world)
+    assert calder.relative_energy_error(first, now) == abs(now - first) / abs(first)
+    assert calder.relative_energy_error(first, now) < 1e-12
+    assert math.isnan(calder.start_energy(calder.Simulation("example-2.1")))

@@ -132,7 +132,10 @@ class WebSimulation {
     });
   }
   void reset_bodies() {
-    guarded([&] { simulation_.reset_bodies(); });
+    guarded([&] {
+      simulation_.reset_bodies();
+      start_energy_ = watched_energy(simulation_.world());  // new bodies: a new start
+    });
   }
 
   [[nodiscard]] double frame() const { return static_cast<double>(simulation_.frame()); }
@@ -144,8 +147,10 @@ class WebSimulation {
   [[nodiscard]] double seed() const { return seed_; }
   // The HUD's energy (calder::displayed_energy, as the command and the
   // renderer show it): {kinetic, potential (NaN where the fields have none),
-  // total, exact}; its pairs bounded, so that a frame's cost does not grow as
-  // N^2 (past kHudEnergyPairs pairs a sampled estimate, exact false).
+  // total, exact, error}; its pairs bounded, so that a frame's cost does not
+  // grow as N^2 (past kHudEnergyPairs pairs a sampled estimate, exact false).
+  // error: the relative error since the start while exact (calder::hud_text's
+  // rule), NaN where the energy isn't watched.
   [[nodiscard]] val energy() const {
     const DisplayedEnergy e = displayed_energy(simulation_.world());
     val out = val::object();
@@ -154,6 +159,9 @@ class WebSimulation {
             e.has_potential ? e.potential.value : std::numeric_limits<double>::quiet_NaN());
     out.set("total", e.total());
     out.set("exact", e.exact());
+    out.set("error", e.exact() && std::isfinite(start_energy_)
+                         ? relative_energy_error(start_energy_, e.total())
+                         : std::numeric_limits<double>::quiet_NaN());
     return out;
   }
 
@@ -352,6 +360,7 @@ class WebSimulation {
 
   std::uint32_t seed_ = 0;
   Simulation simulation_;
+  double start_energy_ = start_energy(simulation_);  // the HUD's error is measured from it
   std::vector<double> forces_, ax_, ay_;
 };
 

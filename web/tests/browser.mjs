@@ -177,6 +177,7 @@ try {
                                null, {timeout: 5000}).catch(() => {});
     const shown = await hud('energy');
     check(shown.startsWith('~'), `the HUD shows the estimate with a leading ~ ("${shown}")`);
+    check(await page.isHidden('#hud-error-box'), 'and no energy error beside an estimate');
   }
 
   // --- a scene file from disk, and the edited one saved ---

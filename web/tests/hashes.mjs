@@ -174,4 +174,21 @@ for (const seed of [-1, 4294967296, 1.5, 'abc']) {
   big.delete();
 }
 
+// --- the HUD's energy error: what the native summary reports ---
+{
+  const sim = new core.Simulation('pythagorean', {});
+  sim.step(100);
+  const e = sim.energy();
+  const run = nativeRun(['pythagorean', '--frames', '100']);
+  const m = /^energy error\s+(\S+) \(relative, since frame 0\)$/m.exec(run.stdout);
+  const native = m ? Number(m[1]) : NaN;
+  check(e.exact && Number.isFinite(e.error) && e.error < 1e-9 && Math.abs(e.error - native) <= 1e-15,
+        `pythagorean, 100 frames: the HUD's energy error ${e.error} (native summary ${native})`);
+  sim.delete();
+  const windy = new core.Simulation('example-2.1', {});
+  windy.step(10);
+  check(Number.isNaN(windy.energy().error), "example-2.1's wind changes the energy: no error shown");
+  windy.delete();
+}
+
 done();
