@@ -18,6 +18,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <ostream>
+#include <string_view>
 #include <vector>
 
 #include "calder/diagnostics.hpp"
@@ -41,24 +42,6 @@ using calder::UpdateOrder;
 using calder::Vec2;
 using calder::World;
 using calder::WorldDef;
-
-const char* name_of(Integrator integrator) {
-  switch (integrator) {
-    case Integrator::semi_implicit_euler:
-      return "semi_implicit_euler";
-    case Integrator::velocity_verlet:
-      return "velocity_verlet";
-    case Integrator::rk4:
-      return "rk4";
-    case Integrator::ias15:
-      return "ias15";
-    case Integrator::yoshida4:
-      return "yoshida4";
-    case Integrator::yoshida6:
-      return "yoshida6";
-  }
-  return "?";
-}
 
 // n bodies drawn from a seeded generator: position in the 640 x 240 canvas,
 // mass in [0.5, 3), velocity components in [-1, 1).
@@ -130,8 +113,8 @@ TEST(ConservationMomentum, MutualAttractionConservesMomentumAndAngularMomentum) 
       for (int done = 0; done < run.steps; done += 500) {
         world.step(500);
         const double p_error = (calder::linear_momentum(world) - p0).mag() / p_scale;
-        ASSERT_LE(p_error, 1e-12) << c.law_name << ", " << name_of(run.integrator) << ", step "
-                                  << done + 500;
+        ASSERT_LE(p_error, 1e-12) << c.law_name << ", " << calder::integrator_name(run.integrator)
+                                  << ", step " << done + 500;
         max_l_error =
             std::max(max_l_error, std::abs(calder::angular_momentum(world) - l0) / l_scale);
       }
@@ -141,7 +124,8 @@ TEST(ConservationMomentum, MutualAttractionConservesMomentumAndAngularMomentum) 
         // above can detect a change in L.
         EXPECT_GT(max_l_error, 1e-10) << c.law_name;
       } else {
-        EXPECT_LE(max_l_error, 1e-12) << c.law_name << ", " << name_of(run.integrator);
+        EXPECT_LE(max_l_error, 1e-12)
+            << c.law_name << ", " << calder::integrator_name(run.integrator);
       }
       // The bodies really interacted: the velocities changed by O(1).
       EXPECT_GT(std::abs(momentum_scale(world) - p_scale), 0.1 * p_scale) << c.law_name;
@@ -207,7 +191,7 @@ TEST(ConservationAngularMomentum, KeplerOrbitAboutFixedAttractor) {
       world.step();
       max_error = std::max(max_error, std::abs(calder::angular_momentum(world, centre) - l0));
     }
-    EXPECT_LE(max_error / l0, 1e-13) << name_of(integrator);
+    EXPECT_LE(max_error / l0, 1e-13) << calder::integrator_name(integrator);
   }
 }
 

@@ -12,6 +12,7 @@
 #include <cmath>
 #include <cstddef>
 #include <ostream>
+#include <string_view>
 #include <vector>
 
 #include "calder/diagnostics.hpp"
@@ -32,24 +33,6 @@ using calder::World;
 using calder::WorldDef;
 
 constexpr double kPi = 3.141592653589793;
-
-const char* name_of(Integrator integrator) {
-  switch (integrator) {
-    case Integrator::semi_implicit_euler:
-      return "semi_implicit_euler";
-    case Integrator::velocity_verlet:
-      return "velocity_verlet";
-    case Integrator::rk4:
-      return "rk4";
-    case Integrator::ias15:
-      return "ias15";
-    case Integrator::yoshida4:
-      return "yoshida4";
-    case Integrator::yoshida6:
-      return "yoshida6";
-  }
-  return "?";
-}
 
 // Least-squares slope of log(error) against log(dt): the observed order p of
 // error ~ C dt^p.
@@ -76,7 +59,7 @@ double fitted_order(const std::vector<double>& dts, const std::vector<double>& e
 // Checks the fitted order and, to show the dt range is in the asymptotic
 // regime, each local order log2(e(dt) / e(dt / 2)) (dt halves each time).
 void expect_order(const std::vector<double>& dts, const std::vector<double>& errors, double lo,
-                  double hi, const char* what) {
+                  double hi, std::string_view what) {
   const double p = fitted_order(dts, errors);
   EXPECT_GE(p, lo) << what;
   EXPECT_LE(p, hi) << what;
@@ -181,7 +164,7 @@ TEST(IntegratorsKepler, ConvergenceOrders) {
       dts.push_back(T / n);
       errors.push_back((world.position(world.body(0)) - exact).mag());
     }
-    expect_order(dts, errors, c.lo, c.hi, name_of(c.integrator));
+    expect_order(dts, errors, c.lo, c.hi, calder::integrator_name(c.integrator));
   }
 }
 
@@ -298,7 +281,7 @@ TEST(IntegratorsDrag, ConvergenceOrdersAgainstClosedForm) {
       v_errors.push_back(std::abs(world.velocity(body).x - v_exact));
       x_errors.push_back(std::abs(world.position(body).x - x_exact));
     }
-    expect_order(dts, v_errors, cs.lo, cs.hi, name_of(cs.integrator));
+    expect_order(dts, v_errors, cs.lo, cs.hi, calder::integrator_name(cs.integrator));
     if (cs.integrator == Integrator::rk4) expect_order(dts, x_errors, cs.lo, cs.hi, "rk4 position");
   }
 }
@@ -321,16 +304,16 @@ TEST(IntegratorsExact, NoForceMeansStraightLineAtConstantVelocity) {
     const BodyId other = world.add_body({.position = {1.0, 1.0}, .velocity = w});
     for (int k = 1; k <= 1000; ++k) {
       world.step();
-      ASSERT_EQ(world.velocity(body), v) << name_of(integrator);
-      ASSERT_EQ(world.velocity(other), w) << name_of(integrator);
+      ASSERT_EQ(world.velocity(body), v) << calder::integrator_name(integrator);
+      ASSERT_EQ(world.velocity(other), w) << calder::integrator_name(integrator);
     }
-    EXPECT_EQ(world.position(body), x0 + v * 500.0) << name_of(integrator);
+    EXPECT_EQ(world.position(body), x0 + v * 500.0) << calder::integrator_name(integrator);
     // At (1, 1) + w t up to the rounding of 1000 additions, each at most half
     // an ulp of the coordinate (< 256, ulp 2^-45): 1000 * 2^-46.
     const Vec2 expected = Vec2{1.0, 1.0} + w * 500.0;
     const double bound = 1000.0 * std::ldexp(1.0, -46);
-    EXPECT_NEAR(world.position(other).x, expected.x, bound) << name_of(integrator);
-    EXPECT_NEAR(world.position(other).y, expected.y, bound) << name_of(integrator);
+    EXPECT_NEAR(world.position(other).x, expected.x, bound) << calder::integrator_name(integrator);
+    EXPECT_NEAR(world.position(other).y, expected.y, bound) << calder::integrator_name(integrator);
   }
 }
 
@@ -367,15 +350,15 @@ TEST(IntegratorsExact, OneStepOfAppliedConstantForce) {
       EXPECT_DOUBLE_EQ(world.velocity(body).x, v1.x);
       EXPECT_DOUBLE_EQ(world.velocity(body).y, v1.y);
     } else {
-      EXPECT_EQ(world.position(body), x1) << name_of(integrator);
-      EXPECT_EQ(world.velocity(body), v1) << name_of(integrator);
+      EXPECT_EQ(world.position(body), x1) << calder::integrator_name(integrator);
+      EXPECT_EQ(world.velocity(body), v1) << calder::integrator_name(integrator);
     }
-    EXPECT_EQ(world.acceleration(body), Vec2{}) << name_of(integrator);
+    EXPECT_EQ(world.acceleration(body), Vec2{}) << calder::integrator_name(integrator);
     // The force does not persist: the next step coasts at v1.
     const Vec2 before = world.position(body);
     const Vec2 velocity = world.velocity(body);
     world.step();
-    EXPECT_EQ(world.velocity(body), velocity) << name_of(integrator);
+    EXPECT_EQ(world.velocity(body), velocity) << calder::integrator_name(integrator);
     EXPECT_NEAR((world.position(body) - (before + velocity * dt)).mag(), 0.0, 1e-13);
   }
 }

@@ -18,6 +18,7 @@
 #include <functional>
 #include <string_view>
 
+#include "calder/names.hpp"
 #include "calder/vec2.hpp"
 
 namespace calder {
@@ -88,10 +89,7 @@ enum class DistanceClamp {
 };
 
 // The laws' names, as scene files, Python and the web page spell them.
-struct DistanceClampName {
-  std::string_view name;
-  DistanceClamp value;
-};
+using DistanceClampName = EnumName<DistanceClamp>;
 inline constexpr std::array<DistanceClampName, 3> kDistanceClampNames{{
     {"distance", DistanceClamp::distance},
     {"squared_distance", DistanceClamp::squared_distance},

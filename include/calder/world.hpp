@@ -28,6 +28,7 @@
 #include "calder/backends.hpp"
 #include "calder/body_columns.hpp"
 #include "calder/fields.hpp"
+#include "calder/names.hpp"
 #include "calder/random.hpp"
 #include "calder/vec2.hpp"
 
@@ -120,10 +121,7 @@ enum class Arithmetic {
 
 // Every arithmetic by its name ("book", "float64", "float32"): the one list
 // that scene files, the command line and messages use.
-struct ArithmeticName {
-  std::string_view name;
-  Arithmetic value;
-};
+using ArithmeticName = EnumName<Arithmetic>;
 inline constexpr std::array<ArithmeticName, 3> kArithmeticNames{{
     {"book", Arithmetic::book},
     {"float64", Arithmetic::float64},
@@ -131,10 +129,7 @@ inline constexpr std::array<ArithmeticName, 3> kArithmeticNames{{
 }};
 // Its name in kArithmeticNames.
 [[nodiscard]] constexpr std::string_view arithmetic_name(Arithmetic arithmetic) {
-  for (const ArithmeticName& a : kArithmeticNames) {
-    if (a.value == arithmetic) return a.name;
-  }
-  return "?";
+  return name_in(kArithmeticNames, arithmetic);
 }
 
 // The most threads a world or a mutual attraction may ask for (a scene file,
@@ -144,10 +139,7 @@ inline constexpr int max_threads = 1024;
 inline constexpr std::int64_t max_step_count = std::int64_t{1} << 53;
 
 // Every integrator by its name, as scene files and the command line spell it.
-struct IntegratorName {
-  std::string_view name;
-  Integrator value;
-};
+using IntegratorName = EnumName<Integrator>;
 inline constexpr std::array<IntegratorName, 6> kIntegratorNames{{
     {"semi_implicit_euler", Integrator::semi_implicit_euler},
     {"velocity_verlet", Integrator::velocity_verlet},
@@ -156,6 +148,10 @@ inline constexpr std::array<IntegratorName, 6> kIntegratorNames{{
     {"yoshida4", Integrator::yoshida4},
     {"yoshida6", Integrator::yoshida6},
 }};
+// Its name in kIntegratorNames.
+[[nodiscard]] constexpr std::string_view integrator_name(Integrator integrator) {
+  return name_in(kIntegratorNames, integrator);
+}
 
 struct WorldDef {
   double width = 640.0;

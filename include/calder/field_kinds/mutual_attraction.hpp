@@ -45,10 +45,7 @@ enum class NBodyMethod {
 };
 
 // The methods' names, as scene files, Python and the web page spell them.
-struct NBodyMethodName {
-  std::string_view name;
-  NBodyMethod value;
-};
+using NBodyMethodName = EnumName<NBodyMethod>;
 inline constexpr std::array<NBodyMethodName, 3> kNBodyMethodNames{{
     {"exact", NBodyMethod::exact},
     {"direct", NBodyMethod::direct},
