@@ -295,8 +295,11 @@ def test_a_pool_worker_killed_mid_member_is_replaced_and_the_member_resumed(tmp_
     assert killed, "no member was caught in the middle"
     status = ensemble.table()
     assert "failed" not in set(status.status) and len(status) == 4
-    assert (status.status == "resumed").sum() >= 1
-    assert (status[status.status == "resumed"].resumed_from >= 20).all()
+    resumed = status[status.status == "resumed"]
+    # The killed member goes on from frame 20 or later; a member the broken
+    # pool stopped beside it goes on from its own last checkpoint, whatever it was.
+    assert (resumed.resumed_from >= 20).any()
+    assert (resumed.resumed_from % 10 == 0).all() and (resumed.resumed_from >= 10).all()
     expect_bits(table, calder.Ensemble(SCENE, **{**spec, "checkpoint": None}).run(workers=1))
 
 
